@@ -1,0 +1,32 @@
+# The two commands of the README. Both install what is missing (scripts/setup.sh) first.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+SCENE ?= atrium
+OUT ?= out/$(SCENE)
+
+.PHONY: run test setup build asan format clean
+
+run: build
+	./$(BUILD)/photovr render --scene $(SCENE) --out $(OUT)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+
+setup:
+	./scripts/setup.sh
+
+build: setup
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	cmake --build $(BUILD) -j$(JOBS)
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build and the whole test suite under it.
+asan: setup
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPHOTOVR_SANITIZE=ON >/dev/null
+	cmake --build build-asan -j$(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j$(JOBS)
+
+format:
+	git ls-files '*.cpp' '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD) build-asan

@@ -1,0 +1,134 @@
+#include "core/image_io.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace photovr {
+namespace {
+
+namespace fs = std::filesystem;
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+std::string temporaryPath(const std::string& path) {
+  const fs::path p(path);
+  // Keep the extension last: OpenImageIO picks the format by it.
+  return (p.parent_path() / (".tmp." + std::to_string(getpid()) + "." + p.filename().string()))
+      .string();
+}
+
+void writePixels(const std::string& path, int w, int h, int c, TypeDesc type, const void* pixels) {
+  if (w <= 0 || h <= 0 || c <= 0) throw InputError(path, "refusing to write an empty image");
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  const std::string tmp = temporaryPath(path);
+  auto out = ImageOutput::create(path);
+  if (!out) throw InputError(path, "no writer for this file type: " + OIIO::geterror());
+  ImageSpec spec(w, h, c, type);
+  bool ok = out->open(tmp, spec) && out->write_image(type, pixels) && out->close();
+  if (!ok) {
+    const std::string why = out->geterror();
+    out.reset();
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write: " + why);
+  }
+  out.reset();
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot move the finished file into place: " + ec.message());
+  }
+}
+
+}  // namespace
+
+void writeImage(const std::string& path, const ImageF& image) {
+  writePixels(path, image.width, image.height, image.channels, TypeDesc::FLOAT, image.data.data());
+}
+
+void writeImage(const std::string& path, const Image8& image) {
+  writePixels(path, image.width, image.height, image.channels, TypeDesc::UINT8, image.data.data());
+}
+
+ImageF readImageF(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  const ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+      int64_t(spec.width) * spec.height > (int64_t(1) << 30))
+    throw InputError(path, "implausible image size " + std::to_string(spec.width) + "x" +
+                               std::to_string(spec.height));
+  ImageF img(spec.width, spec.height, spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.data.data()))
+    throw InputError(path, "corrupt or truncated image: " + in->geterror());
+  return img;
+}
+
+static Image8 toRGBA8(std::unique_ptr<ImageInput> in, const std::string& name) {
+  const ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+      int64_t(spec.width) * spec.height > (int64_t(1) << 28))
+    throw InputError(name, "implausible image size");
+  const int c = spec.nchannels;
+  std::vector<uint8_t> raw(size_t(spec.width) * spec.height * c);
+  if (!in->read_image(0, 0, 0, c, TypeDesc::UINT8, raw.data()))
+    throw InputError(name, "corrupt or truncated image: " + in->geterror());
+  Image8 img(spec.width, spec.height, 4);
+  for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
+    const uint8_t* s = &raw[i * c];
+    uint8_t* d = &img.data[i * 4];
+    d[0] = s[0];
+    d[1] = c >= 3 ? s[1] : s[0];
+    d[2] = c >= 3 ? s[2] : s[0];
+    d[3] = c == 4 ? s[3] : (c == 2 ? s[1] : 255);
+  }
+  return img;
+}
+
+Image8 readImageRGBA8(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  return toRGBA8(std::move(in), path);
+}
+
+Image8 decodeImageRGBA8(const std::vector<uint8_t>& bytes, const std::string& name) {
+  if (bytes.empty()) throw InputError(name, "empty image data");
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  OIIO::ImageSpec config;
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
+  // The format is sniffed from the magic bytes; the name only needs a plausible extension.
+  auto in = ImageInput::open(bytes.size() > 3 && bytes[1] == 'P' ? "mem.png" : "mem.jpg", &config);
+  if (!in) throw InputError(name, "cannot decode image: " + OIIO::geterror());
+  return toRGBA8(std::move(in), name);
+}
+
+float linearToSrgb(float x) {
+  if (!(x > 0.0f)) return 0.0f;
+  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgbToLinear(float x) {
+  if (!(x > 0.0f)) return 0.0f;
+  return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+}
+
+uint8_t toSrgb8(float linear) {
+  const float e = linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
+  return uint8_t(std::lround(e * 255.0f));
+}
+
+}  // namespace photovr

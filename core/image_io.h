@@ -1,0 +1,50 @@
+// Image files through OpenImageIO. Writes are atomic: the file is written next to its
+// destination under a temporary name and renamed, so a failed write leaves nothing
+// half-written. Errors throw InputError naming the file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace photovr {
+
+struct ImageF {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<float> data;  // row-major, row 0 at the top, interleaved channels
+  ImageF() = default;
+  ImageF(int w, int h, int c) : width(w), height(h), channels(c), data(size_t(w) * h * c, 0.f) {}
+  float* at(int x, int y) { return &data[(size_t(y) * width + x) * channels]; }
+  const float* at(int x, int y) const { return &data[(size_t(y) * width + x) * channels]; }
+};
+
+struct Image8 {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<uint8_t> data;
+  Image8() = default;
+  Image8(int w, int h, int c) : width(w), height(h), channels(c), data(size_t(w) * h * c, 0) {}
+  uint8_t* at(int x, int y) { return &data[(size_t(y) * width + x) * channels]; }
+};
+
+// Linear float image; .exr (half-free 32-bit float) or .hdr by extension.
+void writeImage(const std::string& path, const ImageF& image);
+// 8-bit image (already encoded, e.g. sRGB); .png.
+void writeImage(const std::string& path, const Image8& image);
+
+// Reads any format OpenImageIO knows as float (linear values as stored in the file).
+ImageF readImageF(const std::string& path);
+// Reads an 8-bit image, expanded to RGBA.
+Image8 readImageRGBA8(const std::string& path);
+// Decodes an in-memory file (PNG, JPEG, ...) to RGBA8; 'name' is used in errors.
+Image8 decodeImageRGBA8(const std::vector<uint8_t>& bytes, const std::string& name);
+
+// sRGB transfer function (IEC 61966-2-1).
+float linearToSrgb(float linear);
+float srgbToLinear(float encoded);
+uint8_t toSrgb8(float linear);  // clamps to [0, 1] first
+
+}  // namespace photovr

@@ -1,0 +1,161 @@
+// Scene data shared by every module: plain structs of arrays, no GL, no Embree.
+//
+// Conventions (../shared/DESIGN.md): right-handed, +Y up, cameras look down -Z,
+// metres, linear scene-referred radiance in float.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace photovr {
+
+// An image decoded to 8-bit RGBA as stored in the file. Whether it is sRGB-encoded is a
+// property of the material slot that samples it (glTF 2.0 §3.9.2), not of the image.
+struct Texture {
+  std::string name;  // file name or generated name, for messages
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4, row 0 at the top (as in the file)
+  enum class Wrap { Repeat, Clamp, Mirror } wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+  bool nearest = false;  // magnification filter NEAREST (else LINEAR, mipmapped)
+};
+
+// KHR_texture_transform: uv' = T(offset) * R(rotation) * S(scale) * uv.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise in UV space as the extension defines
+  glm::vec2 scale{1.0f};
+  glm::mat3 matrix() const;  // the 3x3 uv transform above
+  bool isIdentity() const;
+};
+
+struct TextureRef {
+  int texture = -1;  // index into Scene::textures, -1 = none
+  int texCoord = 0;  // TEXCOORD_n set (0 or 1)
+  TextureTransform transform;
+  bool valid() const { return texture >= 0; }
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness material (§3.9). Factors multiply the textures.
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;  // perceptual roughness; alpha = roughness^2
+  glm::vec3 emissiveFactor{0.0f};
+  float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength
+  float normalScale = 1.0f;
+  float occlusionStrength = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+  TextureRef baseColorTexture;          // sRGB
+  TextureRef metallicRoughnessTexture;  // linear, B = metallic, G = roughness
+  TextureRef normalTexture;             // linear, tangent space
+  TextureRef occlusionTexture;          // linear, R
+  TextureRef emissiveTexture;           // sRGB
+
+  glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
+  bool isEmissive() const;
+};
+
+// One glTF primitive: a triangle list with one material. Stored once, referenced by
+// any number of instances.
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // per vertex, unit length; never empty after load
+  std::vector<glm::vec4> tangents;  // xyz + handedness w; empty if no normal map needs it
+  std::vector<glm::vec2> uv0;       // may be empty
+  std::vector<glm::vec2> uv1;       // may be empty
+  std::vector<uint32_t> indices;    // 3 per triangle, always present (generated if absent)
+  int material = 0;                 // index into Scene::materials
+
+  size_t triangleCount() const { return indices.size() / 3; }
+  size_t vertexCount() const { return positions.size(); }
+};
+
+struct Instance {
+  int mesh = 0;                      // index into Scene::meshes
+  glm::mat4 transform{1.0f};         // object to world
+  glm::mat4 previousTransform{1.0f};  // last frame's, for motion vectors
+  std::string node;                  // glTF node name, for messages
+};
+
+// KHR_lights_punctual. Intensity units as the extension: candela for point and spot,
+// lux for directional.
+struct Light {
+  enum class Type { Point, Spot, Directional } type = Type::Point;
+  std::string name;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0 = infinite
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.78539816f;  // pi / 4, the extension's default
+  glm::vec3 position{0.0f};            // world
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world, the direction light travels
+};
+
+// A perspective camera. Pose is the camera-to-world rigid transform (looks down -Z).
+struct Camera {
+  std::string name;
+  glm::vec3 position{0.0f};
+  glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};
+  float yfov = 1.0f;     // radians
+  float aspect = 0.0f;   // 0 = use the image's
+  float znear = 0.05f;
+  float zfar = 0.0f;     // 0 = infinite
+};
+
+// Equirectangular environment (latitude-linear, v = 1 at the top row), or a procedural
+// sky for built-in scenes, or a constant. Radiance is linear.
+struct Environment {
+  enum class Type { None, Constant, Map, Sky } type = Type::None;
+  std::string name;
+  glm::vec3 constant{0.0f};
+  float intensity = 1.0f;
+  // Map
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;  // width * height, row 0 at the top
+  // Sky: a simple analytic gradient sky with a sun disc direction.
+  glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
+  glm::vec3 zenithColor{0.0f};
+  glm::vec3 horizonColor{0.0f};
+  glm::vec3 groundColor{0.0f};
+};
+
+struct Bounds {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  bool empty() const { return min.x > max.x; }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 extent() const { return max - min; }
+};
+
+struct Scene {
+  std::string name;    // built-in name or file path
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  Environment environment;
+  std::vector<std::string> warnings;  // non-fatal problems found while loading
+
+  size_t instancedTriangleCount() const;
+  Bounds worldBounds() const;
+};
+
+}  // namespace photovr

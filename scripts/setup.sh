@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages photovr builds and runs with. Idempotent: only
+# packages that are not installed yet are fetched, and apt is not touched at all
+# when everything is present.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config make
+  libgtest-dev
+  libembree-dev libtbb-dev
+  libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri mesa-utils
+  libglfw3-dev libglm-dev
+  libtinygltf-dev libstb-dev
+  libopenimageio-dev openimageio-tools
+  libhidapi-dev
+  libimgui-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
