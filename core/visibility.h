@@ -1,0 +1,37 @@
+// Rebuilding surface hits from a visibility record (instance, triangle, barycentrics).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+
+namespace photovr {
+
+struct VisibilityRecord {
+  uint32_t instance = 0xFFFFFFFFu;  // index into Scene::instances; 0xFFFFFFFF = no hit
+  uint32_t triangle = 0;
+  float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
+  bool hit() const { return instance != 0xFFFFFFFFu; }
+};
+
+// World-space triangle of an instance.
+struct WorldTriangle {
+  glm::vec3 p0, p1, p2;
+};
+WorldTriangle worldTriangle(const Scene& scene, uint32_t instance, uint32_t triangle);
+
+// p0 + b1 (p1 - p0) + b2 (p2 - p0) in world space; the record must be in range.
+glm::vec3 rebuildHitPoint(const Scene& scene, const VisibilityRecord& record);
+
+// True when the record names an existing instance and triangle.
+bool isValidRecord(const Scene& scene, const VisibilityRecord& record);
+
+// Moller-Trumbore (1997) without culling: barycentrics and distance of the ray's hit with
+// the triangle's plane; returns false for a ray parallel to it. The G-buffer shader does the
+// same arithmetic in float.
+bool intersectTriangle(const glm::vec3& origin, const glm::vec3& dir, const WorldTriangle& tri,
+                       float& t, float& b1, float& b2);
+
+}  // namespace photovr

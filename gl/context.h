@@ -1,0 +1,64 @@
+// One interface over the three ways photovr gets an OpenGL 4.5 core context (Filament's
+// PlatformOSMesa / PlatformEGLHeadless pattern). Nothing above gl/ knows which one runs.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace photovr::gl {
+
+enum class Backend { OSMesa, EGL, GLFW };
+
+Backend parseBackend(const std::string& name);  // "osmesa" | "egl" | "glfw"; else UsageError
+std::string backendName(Backend backend);
+
+// A backend that cannot give what photovr needs. The message names the backend, what it
+// offered, and what to try instead.
+class ContextError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ContextOptions {
+  Backend backend = Backend::OSMesa;
+  int windowWidth = 1280;   // glfw only
+  int windowHeight = 720;   // glfw only
+  bool visible = false;     // glfw only
+  std::string title = "photovr";
+};
+
+class Context {
+ public:
+  virtual ~Context() = default;
+  // Creates the context, makes it current, loads the entry points and checks for OpenGL
+  // 4.5 core. Throws ContextError.
+  static std::unique_ptr<Context> create(const ContextOptions& options);
+
+  virtual Backend backend() const = 0;
+  virtual void makeCurrent() = 0;
+  virtual void swapBuffers() {}
+  virtual bool shouldClose() const { return false; }
+  virtual void* nativeWindow() const { return nullptr; }
+
+  const std::string& version() const { return version_; }
+  const std::string& renderer() const { return renderer_; }
+  bool hasExtension(const std::string& name) const;
+
+ protected:
+  using ProcLoader = void* (*)(const char* name);
+  // Loads entry points through 'loader' and verifies the version; called by backends once
+  // their context is current.
+  void initialize(ProcLoader loader);
+
+ private:
+  std::string version_;
+  std::string renderer_;
+};
+
+// Backends (each in its own file so their system headers stay apart).
+std::unique_ptr<Context> createOSMesaContext(const ContextOptions& options);
+std::unique_ptr<Context> createEGLContext(const ContextOptions& options);
+std::unique_ptr<Context> createGLFWContext(const ContextOptions& options);
+
+}  // namespace photovr::gl
