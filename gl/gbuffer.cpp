@@ -58,6 +58,11 @@ GBufferPass::GBufferPass(int w, int h, bool hasLayerExtension, EyeRouting routin
                    ? std::vector<std::string>{"PHOTOVR_LAYERED 1\n#extension "
                                               "GL_ARB_shader_viewport_layer_array : require"}
                    : std::vector<std::string>{}) {
+  GLint alignment = 0;
+  api::GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  if (alignment <= 0 || sizeof(shared::GpuMaterial) % size_t(alignment) != 0)
+    throw ContextError("uniform buffer offset alignment " + std::to_string(alignment) +
+                       " does not divide the 256-byte material stride");
   createTargets();
   api::CreateBuffers(1, &frameBuffer_);
   api::NamedBufferStorage(frameBuffer_, sizeof(shared::FrameUniforms), nullptr,
@@ -143,7 +148,6 @@ void GBufferPass::render(const SceneGpu& scene, const std::array<EyeCamera, 2>& 
 void GBufferPass::drawMeshes(const SceneGpu& scene) {
   program_.use();
   api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, scene.instanceBuffer());
-  api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, scene.materialBuffer());
   api::BindBufferBase(GL_UNIFORM_BUFFER, 4, frameBuffer_);
   api::FrontFace(GL_CCW);
   api::CullFace(GL_BACK);
@@ -154,7 +158,9 @@ void GBufferPass::drawMeshes(const SceneGpu& scene) {
     const bool cull = !m.anyMirrored && scene.cullBackFaces(m.material);
     cull ? api::Enable(GL_CULL_FACE) : api::Disable(GL_CULL_FACE);
     program_.set("uFirstInstance", m.firstInstance);
-    program_.set("uMaterial", unsigned(m.material));
+    api::BindBufferRange(GL_UNIFORM_BUFFER, 5, scene.materialBuffer(),
+                         GLintptr(m.material) * GLintptr(sizeof(shared::GpuMaterial)),
+                         sizeof(shared::GpuMaterial));
     for (int s = 0; s < SLOT_COUNT; ++s) api::BindTextureUnit(s, scene.texture(m.material, s));
     api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.buffers[0]);
     api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.buffers[5]);

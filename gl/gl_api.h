@@ -49,6 +49,7 @@
   X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                                   \
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                                   \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                           \
+  X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                         \
   X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                                   \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                   \
   X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)                         \

@@ -10,7 +10,7 @@ namespace photovr::gl {
 namespace {
 
 static_assert(sizeof(shared::GpuInstance) == 208, "std430 layout of GpuInstance");
-static_assert(sizeof(shared::GpuMaterial) == 64 + 16 * 2 * SLOT_COUNT, "std430 GpuMaterial");
+static_assert(sizeof(shared::GpuMaterial) == 256, "GpuMaterial: 256-byte uniform-range stride");
 
 template <typename T>
 GLuint makeBuffer(const std::vector<T>& data) {

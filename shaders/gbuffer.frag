@@ -13,8 +13,11 @@ in vec4 vPreviousClip;
 flat in uint vEye;
 flat in uint vInstance;
 
-uniform uint uMaterial;
-layout(binding = 0) uniform sampler2D uTextures[SLOT_COUNT];
+layout(binding = SLOT_BASE_COLOR) uniform sampler2D uBaseColor;
+layout(binding = SLOT_METALLIC_ROUGHNESS) uniform sampler2D uMetallicRoughness;
+layout(binding = SLOT_NORMAL) uniform sampler2D uNormal;
+layout(binding = SLOT_OCCLUSION) uniform sampler2D uOcclusion;
+layout(binding = SLOT_EMISSIVE) uniform sampler2D uEmissive;
 
 layout(location = 0) out uvec4 outVisibility;  // instance, triangle, b1 bits, b2 bits
 layout(location = 1) out vec4 outNormal;       // world shading normal, w = 1
@@ -49,13 +52,19 @@ vec2 rayBarycentrics(GpuInstance inst, uint triangle) {
   return vec2(b1, b2);
 }
 
-vec4 sampleSlot(GpuMaterial mat, int slot, vec4 fallback) {
-  if ((mat.flags.z & (1u << slot)) == 0u) return fallback;
+bool hasSlot(GpuMaterial mat, int slot) { return (mat.flags.z & (1u << slot)) != 0u; }
+
+// The slot's texture coordinate set, through its KHR_texture_transform.
+vec2 slotUv(GpuMaterial mat, int slot) {
   vec2 uv = ((mat.flags.w & (1u << slot)) != 0u) ? vUv1 : vUv0;
   vec3 t = vec3(uv, 1.0);
-  uv = vec2(dot(mat.uvTransform[2 * slot].xyz, t), dot(mat.uvTransform[2 * slot + 1].xyz, t));
-  return texture(uTextures[slot], uv);
+  return vec2(dot(mat.uvTransform[2 * slot].xyz, t), dot(mat.uvTransform[2 * slot + 1].xyz, t));
 }
+
+// Sampled unconditionally, selected after: implicit derivatives are undefined inside
+// non-uniform control flow.
+#define SAMPLE_SLOT(mat, slot, sampler, fallback) \
+  mix((fallback), texture(sampler, slotUv(mat, slot)), bvec4(hasSlot(mat, slot)))
 
 vec3 shadingNormal(GpuMaterial mat, bool frontFacing) {
   vec3 n = normalize(vNormal);
@@ -63,7 +72,7 @@ vec3 shadingNormal(GpuMaterial mat, bool frontFacing) {
   if ((mat.flags.z & (1u << SLOT_NORMAL)) != 0u && dot(t.xyz, t.xyz) > 0.0) {
     vec3 tangent = normalize(t.xyz - n * dot(n, t.xyz));
     vec3 bitangent = cross(n, tangent) * (t.w < 0.0 ? -1.0 : 1.0);
-    vec3 tn = sampleSlot(mat, SLOT_NORMAL, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
+    vec3 tn = SAMPLE_SLOT(mat, SLOT_NORMAL, uNormal, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
     tn.xy *= mat.params.z;
     n = normalize(tn.x * tangent + tn.y * bitangent + tn.z * n);
   }
@@ -78,20 +87,20 @@ vec2 motionVector() {
 }
 
 void main() {
-  GpuMaterial mat = materials[uMaterial];
+  GpuMaterial mat = material;
   GpuInstance inst = instances[vInstance];
   bool front = gl_FrontFacing != (inst.info.y != 0u);
   if (!front && mat.flags.y == 0u) discard;  // single-sided: cull back faces
-  vec4 base = mat.baseColorFactor * sampleSlot(mat, SLOT_BASE_COLOR, vec4(1.0));
+  vec4 base = mat.baseColorFactor * SAMPLE_SLOT(mat, SLOT_BASE_COLOR, uBaseColor, vec4(1.0));
   if (mat.flags.x == ALPHA_MASK && base.a < mat.emissive.w) discard;
-  vec4 mr = sampleSlot(mat, SLOT_METALLIC_ROUGHNESS, vec4(1.0));
-  float occlusion = sampleSlot(mat, SLOT_OCCLUSION, vec4(1.0)).r;
+  vec4 mr = SAMPLE_SLOT(mat, SLOT_METALLIC_ROUGHNESS, uMetallicRoughness, vec4(1.0));
+  float occlusion = SAMPLE_SLOT(mat, SLOT_OCCLUSION, uOcclusion, vec4(1.0)).r;
   uint triangle = uint(gl_PrimitiveID);
   vec2 b = rayBarycentrics(inst, triangle);
   outVisibility = uvec4(inst.info.x, triangle, floatBitsToUint(b.x), floatBitsToUint(b.y));
   outNormal = vec4(shadingNormal(mat, front), 1.0);
   outBaseColor = vec4(base.rgb, 1.0 + mat.params.w * (occlusion - 1.0));
   outMaterial = vec4(mat.params.x * mr.b, mat.params.y * mr.g, 0.0, 0.0);
-  outEmission = vec4(mat.emissive.rgb * sampleSlot(mat, SLOT_EMISSIVE, vec4(1.0)).rgb, 1.0);
+  outEmission = vec4(mat.emissive.rgb * SAMPLE_SLOT(mat, SLOT_EMISSIVE, uEmissive, vec4(1.0)).rgb, 1.0);
   outMotion = motionVector();
 }

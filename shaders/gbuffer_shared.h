@@ -43,6 +43,7 @@ struct GpuMaterial {
   uvec4 flags;    // x = alpha mode, y = double sided, z = texture mask (bit = slot),
                   // w = texCoord set mask (bit = slot uses TEXCOORD_1)
   vec4 uvTransform[2 * SLOT_COUNT];  // per slot, rows of the 3x3 uv matrix: (a b c) (d e f)
+  vec4 padding[2];  // 256-byte stride: any GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT divides it
 };
 
 struct FrameUniforms {

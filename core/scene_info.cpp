@@ -1,0 +1,239 @@
+#include "core/scene_info.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace photovr {
+namespace {
+
+// 1234567 -> "1,234,567": triangle counts are read at a glance.
+std::string count(size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string fmt(const char* format, double a, double b = 0, double c = 0) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+std::string vec(const glm::vec3& v) {
+  return fmt("(%.2f, %.2f, %.2f)", v.x, v.y, v.z);
+}
+
+bool validMesh(const Scene& scene, int mesh) {
+  return mesh >= 0 && size_t(mesh) < scene.meshes.size();
+}
+
+const Material* materialOf(const Scene& scene, const Mesh& mesh) {
+  const bool ok = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size();
+  return ok ? &scene.materials[mesh.material] : nullptr;
+}
+
+void addMaterialFlags(SceneFeatures& f, const Material& m, size_t triangles) {
+  if (m.isEmissive()) f.emissiveTriangles += triangles;
+  f.alphaMask |= m.alphaMode == AlphaMode::Mask;
+  f.alphaBlend |= m.alphaMode == AlphaMode::Blend;
+  f.doubleSided |= m.doubleSided;
+}
+
+void countLights(SceneFeatures& f, const Scene& scene) {
+  for (const Light& l : scene.lights) {
+    if (l.type == Light::Type::Point) ++f.pointLights;
+    if (l.type == Light::Type::Spot) ++f.spotLights;
+    if (l.type == Light::Type::Directional) ++f.directionalLights;
+  }
+  f.punctualLights = !scene.lights.empty();
+}
+
+bool environmentEmits(const Environment& env) {
+  switch (env.type) {
+    case Environment::Type::None:
+      return false;
+    case Environment::Type::Map:
+      return !env.pixels.empty() && env.intensity > 0.0f;
+    default:
+      return env.intensity > 0.0f;
+  }
+}
+
+void addWarnings(SceneFeatures& f, const Scene& scene, size_t badInstances, size_t unusedMeshes) {
+  if (badInstances > 0)
+    f.warnings.push_back(count(badInstances) + " instances name a mesh that does not exist");
+  if (unusedMeshes > 0)
+    f.warnings.push_back(count(unusedMeshes) + " meshes are used by no instance (not drawn)");
+  if (!f.punctualLights && !f.areaLights && !f.environment)
+    f.warnings.push_back("no light, emitter or environment: the image will be black");
+  const Environment& env = scene.environment;
+  if (env.type == Environment::Type::Map &&
+      env.pixels.size() != size_t(env.width) * size_t(env.height))
+    f.warnings.push_back("environment map pixel count does not match its size");
+  if (scene.cameras.empty()) f.warnings.push_back("no camera in the scene");
+}
+
+// ---------------------------------------------------------------------------------------
+// describeScene sections
+
+void describeGeometry(std::ostream& out, const Scene& scene) {
+  size_t vertices = 0, triangles = 0, instanced = 0, shared = 0;
+  std::vector<size_t> uses(scene.meshes.size(), 0);
+  for (const Mesh& m : scene.meshes) {
+    vertices += m.vertexCount();
+    triangles += m.triangleCount();
+  }
+  for (const Instance& inst : scene.instances)
+    if (validMesh(scene, inst.mesh)) {
+      ++uses[inst.mesh];
+      instanced += scene.meshes[inst.mesh].triangleCount();
+    }
+  for (const size_t u : uses) shared += u >= 2 ? 1 : 0;
+  out << "meshes: " << count(scene.meshes.size()) << " (" << count(vertices) << " vertices, "
+      << count(triangles) << " triangles stored)\n";
+  out << "instances: " << count(scene.instances.size()) << " (" << count(instanced)
+      << " triangles instanced; " << count(shared) << " meshes instanced more than once)\n";
+}
+
+void describeMaterials(std::ostream& out, const Scene& scene) {
+  size_t emissive = 0, metal = 0, dielectric = 0, mixed = 0, mask = 0, blend = 0, twoSided = 0;
+  for (const Material& m : scene.materials) {
+    emissive += m.isEmissive();
+    metal += m.metallicFactor >= 1.0f;
+    dielectric += m.metallicFactor <= 0.0f;
+    mixed += m.metallicFactor > 0.0f && m.metallicFactor < 1.0f;
+    mask += m.alphaMode == AlphaMode::Mask;
+    blend += m.alphaMode == AlphaMode::Blend;
+    twoSided += m.doubleSided;
+  }
+  out << "materials: " << count(scene.materials.size()) << " (emissive " << emissive << ", metal "
+      << metal << ", dielectric " << dielectric << ", partly metallic " << mixed << ", MASK "
+      << mask << ", BLEND " << blend << ", double-sided " << twoSided << ")\n";
+}
+
+void describeTextures(std::ostream& out, const Scene& scene) {
+  constexpr size_t kListed = 16;  // enough for built-ins; big glTF files get a count
+  out << "textures: " << count(scene.textures.size()) << "\n";
+  for (size_t i = 0; i < scene.textures.size() && i < kListed; ++i) {
+    const Texture& t = scene.textures[i];
+    out << "  " << t.name << " " << t.width << "x" << t.height << "\n";
+  }
+  if (scene.textures.size() > kListed)
+    out << "  ... and " << count(scene.textures.size() - kListed) << " more\n";
+}
+
+void describeLights(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
+  out << "lights: " << count(scene.lights.size()) << " (point " << f.pointLights << ", spot "
+      << f.spotLights << ", directional " << f.directionalLights << ")\n";
+  out << "emissive triangles: " << count(f.emissiveTriangles) << " instanced\n";
+}
+
+void describeCameras(std::ostream& out, const Scene& scene) {
+  out << "cameras: " << count(scene.cameras.size()) << "\n";
+  for (const Camera& c : scene.cameras)
+    out << "  " << c.name << " at " << vec(c.position) << ", yfov "
+        << fmt("%.1f", glm::degrees(c.yfov)) << " deg\n";
+}
+
+std::string environmentName(const Environment& env) {
+  switch (env.type) {
+    case Environment::Type::None:
+      return "none";
+    case Environment::Type::Constant:
+      return "constant " + vec(env.constant * env.intensity);
+    case Environment::Type::Map:
+      return "map " + std::to_string(env.width) + "x" + std::to_string(env.height);
+    case Environment::Type::Sky: {
+      const float elevation = glm::degrees(std::asin(glm::clamp(env.sunDirection.y, -1.f, 1.f)));
+      return "sky (sun elevation " + fmt("%.1f", elevation) + " deg)";
+    }
+  }
+  return "unknown";
+}
+
+void describeBounds(std::ostream& out, const Scene& scene) {
+  Bounds b;
+  for (const Instance& inst : scene.instances)
+    if (validMesh(scene, inst.mesh))
+      for (const glm::vec3& p : scene.meshes[inst.mesh].positions)
+        b.extend(glm::vec3(inst.transform * glm::vec4(p, 1.0f)));
+  if (b.empty()) {
+    out << "world bounds: empty\n";
+    return;
+  }
+  const glm::vec3 e = b.extent();
+  out << "world bounds: " << vec(b.min) << " .. " << vec(b.max) << ", size "
+      << fmt("%.2f x %.2f x %.2f m", e.x, e.y, e.z) << "\n";
+}
+
+void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
+  out << "renderer will use:\n";
+  out << "  punctual lights: "
+      << (f.punctualLights ? count(scene.lights.size()) + " (shadow rays)"
+                           : std::string("none (no shadow rays)"))
+      << "\n";
+  out << "  area lights: "
+      << (f.areaLights ? count(f.emissiveTriangles) + " emissive triangles"
+                       : std::string("none (no area-light sampling)"))
+      << "\n";
+  out << "  environment: "
+      << (f.environment ? environmentName(scene.environment)
+                        : std::string("none (misses are black)"))
+      << "\n";
+  out << "  alpha mask: " << (f.alphaMask ? "yes (any-hit filter)" : "no") << "\n";
+  if (f.alphaBlend) out << "  alpha blend: yes\n";
+  out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
+}
+
+void describeWarnings(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
+  const size_t n = f.warnings.size() + scene.warnings.size();
+  out << "warnings: " << (n == 0 ? std::string("none") : count(n)) << "\n";
+  for (const std::string& w : scene.warnings) out << "  " << w << "\n";
+  for (const std::string& w : f.warnings) out << "  " << w << "\n";
+}
+
+}  // namespace
+
+SceneFeatures analyzeScene(const Scene& scene) {
+  SceneFeatures f;
+  std::vector<bool> used(scene.meshes.size(), false);
+  size_t badInstances = 0;
+  for (const Instance& inst : scene.instances) {
+    if (!validMesh(scene, inst.mesh)) {
+      ++badInstances;
+      continue;
+    }
+    used[inst.mesh] = true;
+    const Mesh& mesh = scene.meshes[inst.mesh];
+    if (const Material* m = materialOf(scene, mesh)) addMaterialFlags(f, *m, mesh.triangleCount());
+  }
+  countLights(f, scene);
+  f.areaLights = f.emissiveTriangles > 0;
+  f.environment = environmentEmits(scene.environment);
+  size_t unused = 0;
+  for (const bool u : used) unused += u ? 0 : 1;
+  addWarnings(f, scene, badInstances, unused);
+  return f;
+}
+
+std::string describeScene(const Scene& scene) {
+  const SceneFeatures f = analyzeScene(scene);
+  std::ostringstream out;
+  out << "scene: " << scene.name << "\n";
+  describeGeometry(out, scene);
+  describeMaterials(out, scene);
+  describeTextures(out, scene);
+  describeLights(out, scene, f);
+  describeCameras(out, scene);
+  out << "environment: " << environmentName(scene.environment) << "\n";
+  describeBounds(out, scene);
+  describeRendererUse(out, scene, f);
+  describeWarnings(out, scene, f);
+  return out.str();
+}
+
+}  // namespace photovr
