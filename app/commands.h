@@ -1,0 +1,24 @@
+// The photovr subcommands. Each takes the arguments after its name and returns the exit
+// status; errors are thrown (UsageError, InputError, gl::ContextError) and reported by main.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace photovr::app {
+
+using Args = std::vector<std::string>;
+
+int runRender(const Args& args);
+int runInfo(const Args& args);
+int runExportScene(const Args& args);
+
+// A built-in scene name or a .gltf/.glb path; --env FILE replaces the environment.
+Scene loadSceneSpec(const std::string& spec);
+void applyEnvironmentOption(Scene& scene, const std::string& envPath);
+
+bool wantsHelp(const Args& args);
+
+}  // namespace photovr::app

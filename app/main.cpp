@@ -1,0 +1,52 @@
+// photovr: photorealistic stereo rendering for VR. Thin front end over the modules.
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "gl/context.h"
+
+namespace {
+
+const char* const kUsage =
+    "usage: photovr COMMAND [options]   (photovr COMMAND --help for its options)\n"
+    "commands:\n"
+    "  render        render a scene headless and write the images\n"
+    "  info          print what a scene contains and what the renderer will use\n"
+    "  export-scene  write a built-in scene as glTF 2.0\n";
+
+using Command = int (*)(const photovr::app::Args&);
+
+int dispatch(int argc, char** argv) {
+  const std::map<std::string, Command> commands = {{"render", photovr::app::runRender},
+                                                   {"info", photovr::app::runInfo},
+                                                   {"export-scene", photovr::app::runExportScene}};
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  auto it = commands.find(name);
+  if (it == commands.end())
+    throw photovr::UsageError("unknown command '" + name + "' (expected render, info or export-scene)");
+  return it->second(photovr::app::Args(argv + 2, argv + argc));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const photovr::UsageError& e) {
+    std::cerr << "photovr: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {  // InputError, gl::ContextError, I/O
+    std::cerr << "photovr: " << e.what() << "\n";
+    return 1;
+  }
+}

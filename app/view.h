@@ -1,0 +1,32 @@
+// Which camera a rendering command uses: a scene camera (--camera), overridden by
+// --look-from/--look-at/--fovy, placed as a stereo pair (--eyes stereo) or rendered with
+// its own symmetric frustum (--eyes mono).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "app/options.h"
+#include "core/camera.h"
+#include "core/scene.h"
+
+namespace photovr::app {
+
+struct View {
+  Pose head;
+  float yfov = 1.0f;  // radians; mono only
+  bool stereo = true;
+  std::string description;  // for the log: which camera and how it was placed
+};
+
+// Throws UsageError for a camera index/name the scene lacks.
+View resolveView(const Scene& scene, const Options& options);
+
+// The two eye cameras of frame 'frame' (Halton jitter). Mono gives the same camera twice.
+std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame);
+
+// The options every rendering command accepts for the camera, with their help text.
+extern const char* const kViewHelp;
+extern const std::set<std::string> kViewOptions;
+
+}  // namespace photovr::app

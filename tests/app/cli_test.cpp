@@ -1,0 +1,124 @@
+// The photovr command line, run as a user would: exit codes, one-line errors, outputs.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "core/image_io.h"
+#include "tests/app/cli_util.h"
+
+namespace photovr {
+namespace {
+
+using testing::runPhotovr;
+using testing::tempDir;
+namespace fs = std::filesystem;
+
+size_t lineCount(const std::string& s) {
+  size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(Cli, HelpForEveryCommand) {
+  for (const char* cmd : {"--help", "render --help", "info --help", "export-scene --help"}) {
+    const auto r = runPhotovr(cmd);
+    EXPECT_EQ(r.status, 0) << cmd;
+    EXPECT_NE(r.output.find("usage: photovr"), std::string::npos) << cmd;
+  }
+}
+
+TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
+  const char* cases[][2] = {
+      {"frobnicate", "unknown command 'frobnicate'"},
+      {"render --width 0", "--width: 0 is out of range"},
+      {"render --width 99999999999", "--width"},
+      {"render --height abc", "--height: 'abc' is not an integer"},
+      {"render --scene nosuchscene", "neither a built-in scene"},
+      {"render --eyes triple", "--eyes: 'triple' is not one of stereo, mono"},
+      {"render --look-at 1,2", "--look-at: '1,2' is not three"},
+      {"render --fovy 1e9", "--fovy"},
+      {"render --fovy nan", "--fovy: 'nan' is not a finite number"},
+      {"render --backend vulkan", "unknown backend 'vulkan'"},
+      {"render --frobs 3", "unknown option '--frobs'"},
+      {"render --camera 7 --scene cornell", "--camera: '7' is not a camera of this scene"},
+      {"info", "expected exactly one SCENE"},
+      {"export-scene nosuch /tmp/x.glb", "unknown built-in scene 'nosuch'"},
+  };
+  for (const auto& c : cases) {
+    const auto r = runPhotovr(c[0]);
+    EXPECT_EQ(r.status, 2) << c[0] << "\n" << r.output;
+    EXPECT_NE(r.output.find(c[1]), std::string::npos) << c[0] << "\n" << r.output;
+    EXPECT_EQ(lineCount(r.output), 1u) << c[0] << "\n" << r.output;
+  }
+}
+
+TEST(Cli, MissingSceneFileIsAnInputErrorNamingTheFile) {
+  const auto r = runPhotovr("info /nonexistent/scene.glb");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("/nonexistent/scene.glb"), std::string::npos) << r.output;
+  EXPECT_EQ(lineCount(r.output), 1u) << r.output;
+}
+
+TEST(Cli, InfoOnEveryBuiltinScene) {
+  for (const char* name : {"atrium", "cornell", "spheres"}) {
+    const auto r = runPhotovr(std::string("info ") + name);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("triangles"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("renderer will use"), std::string::npos) << r.output;
+  }
+}
+
+TEST(Cli, ExportedSceneLoadsBackWithTheSameCounts) {
+  const std::string dir = tempDir("export");
+  const auto w = runPhotovr("export-scene atrium " + dir + "/atrium.glb");
+  ASSERT_EQ(w.status, 0) << w.output;
+  const auto a = runPhotovr("info atrium"), b = runPhotovr("info " + dir + "/atrium.glb");
+  ASSERT_EQ(b.status, 0) << b.output;
+  // The triangle line (stored and instanced) must agree between built-in and exported.
+  auto triangles = [](const std::string& s) {
+    const size_t p = s.find("triangles");
+    return s.substr(s.rfind('\n', p) + 1, s.find('\n', p) - s.rfind('\n', p) - 1);
+  };
+  EXPECT_EQ(triangles(a.output), triangles(b.output));
+  EXPECT_NE(b.output.find("textures"), std::string::npos);
+}
+
+TEST(Cli, RenderWritesEveryImageForBothEyes) {
+  const std::string dir = tempDir("render");
+  const auto r = runPhotovr("render --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* eye : {"left", "right"})
+    for (const char* file : {"depth.exr", "normal.png", "albedo.png", "ids.png"})
+      EXPECT_TRUE(fs::exists(dir + "/" + eye + "/" + file)) << eye << "/" << file;
+  const Image8 mosaic = readImageRGBA8(dir + "/gbuffer.png");
+  EXPECT_EQ(mosaic.width, 2 * 64);
+  EXPECT_EQ(mosaic.height, 72);
+  const ImageF depth = readImageF(dir + "/left/depth.exr");
+  ASSERT_EQ(depth.width, 64);
+  // The camera is inside the closed box: every pixel sees a wall, at reversed-Z depth
+  // near / distance with distance between 0.05 m and the box diagonal (3.5 m).
+  for (float d : depth.data) {
+    EXPECT_GT(d, 0.05f / 3.5f);
+    EXPECT_LE(d, 1.0f);
+  }
+}
+
+TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
+  const std::string dir = tempDir("mono");
+  const auto r = runPhotovr("render --scene spheres --eyes mono --fovy 40 --backend osmesa "
+                            "--width 80 --height 40 --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/mono/albedo.png"));
+  EXPECT_FALSE(fs::exists(dir + "/left"));
+  EXPECT_EQ(readImageRGBA8(dir + "/gbuffer.png").width, 80);
+}
+
+TEST(Cli, UnwritableOutputIsAnErrorNotACrash) {
+  const auto r = runPhotovr("render --scene cornell --backend osmesa --width 8 --height 8 --out "
+                            "/proc/photovr-cannot-write");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("/proc/photovr-cannot-write"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace photovr
