@@ -34,7 +34,25 @@ static std::string otherBackends(Backend b) {
   return b == Backend::OSMesa ? "--backend egl" : "--backend osmesa (software, always headless)";
 }
 
+namespace {
+const Context* entryPointsOwner = nullptr;  // whose loader filled gl::api last
+}
+
+void Context::makeCurrent() {
+  bindCurrent();
+  if (entryPointsOwner != this && loader_) {
+    api::load(loader_);
+    entryPointsOwner = this;
+  }
+}
+
+void Context::releaseEntryPoints() {
+  if (entryPointsOwner == this) entryPointsOwner = nullptr;
+}
+
 void Context::initialize(ProcLoader loader) {
+  loader_ = loader;
+  entryPointsOwner = this;
   const std::string name = backendName(backend());
   auto getString = reinterpret_cast<PFNGLGETSTRINGPROC>(loader("glGetString"));
   const char* v = getString ? reinterpret_cast<const char*>(getString(GL_VERSION)) : nullptr;

@@ -36,7 +36,9 @@ class Context {
   static std::unique_ptr<Context> create(const ContextOptions& options);
 
   virtual Backend backend() const = 0;
-  virtual void makeCurrent() = 0;
+  // Makes this context current and points the entry points at it (contexts of different
+  // backends resolve functions differently: OSMesa directly, EGL/GLFW through glvnd).
+  void makeCurrent();
   virtual void swapBuffers() {}
   virtual bool shouldClose() const { return false; }
   virtual void* nativeWindow() const { return nullptr; }
@@ -50,10 +52,13 @@ class Context {
   // Loads entry points through 'loader' and verifies the version; called by backends once
   // their context is current.
   void initialize(ProcLoader loader);
+  virtual void bindCurrent() = 0;  // the backend's own make-current call
+  void releaseEntryPoints();       // destructors: forget the pointers if they were ours
 
  private:
   std::string version_;
   std::string renderer_;
+  ProcLoader loader_ = nullptr;
 };
 
 // Backends (each in its own file so their system headers stay apart).

@@ -72,16 +72,17 @@ class EGLContextImpl final : public Context {
     if (context_ == EGL_NO_CONTEXT)
       throw ContextError("egl: the " + platform + " display refused an OpenGL 4.5 core context "
                          "(error " + eglErrorText() + "); try --backend osmesa");
-    makeCurrent();
+    bindCurrent();
     initialize(eglProc);
   }
   ~EGLContextImpl() override {
+    releaseEntryPoints();
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
     eglTerminate(display_);
   }
   Backend backend() const override { return Backend::EGL; }
-  void makeCurrent() override {
+  void bindCurrent() override {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
       throw ContextError("egl: eglMakeCurrent without a surface failed (error " +
                          eglErrorText() + "); try --backend osmesa");

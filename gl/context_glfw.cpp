@@ -38,15 +38,16 @@ class GLFWContextImpl final : public Context {
       glfwTerminate();
       throw ContextError("glfw: no OpenGL 4.5 core window (" + why + "); try --backend egl");
     }
-    makeCurrent();
+    bindCurrent();
     initialize(glfwProc);
   }
   ~GLFWContextImpl() override {
+    releaseEntryPoints();
     glfwDestroyWindow(window_);
     glfwTerminate();
   }
   Backend backend() const override { return Backend::GLFW; }
-  void makeCurrent() override { glfwMakeContextCurrent(window_); }
+  void bindCurrent() override { glfwMakeContextCurrent(window_); }
   void swapBuffers() override {
     glfwSwapBuffers(window_);
     glfwPollEvents();

@@ -22,15 +22,16 @@ class OSMesaContextImpl final : public Context {
       throw ContextError(
           "osmesa: could not create an OpenGL 4.5 core context (is libosmesa6 >= 20 "
           "installed?); try --backend egl");
-    makeCurrent();
+    bindCurrent();
     initialize(osmesaProc);
   }
   ~OSMesaContextImpl() override {
+    releaseEntryPoints();
     if (OSMesaGetCurrentContext() == ctx_) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(ctx_);
   }
   Backend backend() const override { return Backend::OSMesa; }
-  void makeCurrent() override {
+  void bindCurrent() override {
     // photovr renders into its own framebuffer objects; the default buffer is a token.
     if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, kSide, kSide))
       throw ContextError("osmesa: OSMesaMakeCurrent failed");
