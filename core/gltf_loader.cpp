@@ -1,0 +1,924 @@
+#include "core/gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/mesh_util.h"
+
+namespace photovr {
+namespace {
+
+namespace fs = std::filesystem;
+namespace tg = tinygltf;
+
+// An accessor without a bufferView is all zeros (glTF 2.0 §3.6.2.1); its count is not
+// bounded by any buffer, so cap it to keep a malicious count from exhausting memory.
+constexpr size_t kMaxZeroAccessorCount = size_t(1) << 26;
+constexpr int kTextureNotLoaded = -2;
+
+const std::vector<std::string> kSupportedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+
+// ---------------------------------------------------------------------------------------
+// Reading and parsing the file
+
+std::string firstLine(const std::string& text) {
+  const size_t begin = text.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return "";
+  const size_t end = text.find_first_of("\r\n", begin);
+  return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+std::vector<uint8_t> readFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "file not found");
+  if (fs::is_directory(path, ec)) throw InputError(path, "is a directory, not a glTF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the file for reading");
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "read error");
+  if (bytes.empty()) throw InputError(path, "file is empty");
+  // tinygltf takes 32-bit sizes, and .glb cannot describe more (glTF 2.0 §4.4.2).
+  if (bytes.size() > std::numeric_limits<uint32_t>::max())
+    throw InputError(path, "file is larger than 4 GiB");
+  return bytes;
+}
+
+bool isGlb(const std::vector<uint8_t>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+uint32_t readU32(const std::vector<uint8_t>& bytes, size_t at) {
+  uint32_t v;  // .glb is little-endian (§4.4.1), as are the hosts photovr runs on
+  std::memcpy(&v, &bytes[at], 4);
+  return v;
+}
+
+// Walks the .glb chunk headers (glTF 2.0 §4.4) so that a truncated or lying file is refused
+// here with a clear message; tinygltf 2.7's own chunk check is off by the 8-byte header.
+void checkGlbLayout(const std::vector<uint8_t>& bytes, const std::string& path) {
+  if (bytes.size() < 20)
+    throw InputError(path, "truncated .glb: " + std::to_string(bytes.size()) +
+                               " bytes, shorter than the 20-byte header");
+  if (readU32(bytes, 4) != 2)
+    throw InputError(path, "unsupported .glb container version " +
+                               std::to_string(readU32(bytes, 4)) + " (expected 2)");
+  const uint64_t length = readU32(bytes, 8);
+  if (length > bytes.size())
+    throw InputError(path, "truncated .glb: header declares " + std::to_string(length) +
+                               " bytes, the file has " + std::to_string(bytes.size()));
+  for (uint64_t at = 12; at < length;) {
+    if (length - at < 8) throw InputError(path, "truncated .glb: chunk header cut off");
+    const uint64_t chunkLength = readU32(bytes, size_t(at));
+    if (chunkLength > length - at - 8)
+      throw InputError(path, "truncated .glb: a chunk declares " + std::to_string(chunkLength) +
+                                 " bytes, only " + std::to_string(length - at - 8) + " remain");
+    at += 8 + chunkLength;
+  }
+}
+
+// Keeps the encoded bytes of data-URI and external images for photovr's own decoder. Images
+// in a bufferView are sliced later, after the view is range-checked: tinygltf passes an
+// unchecked pointer for those, so it must not be read here.
+bool keepEncodedImage(tg::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+// tinygltf quotes whole data URIs in its messages; a megabyte of base64 helps no one.
+std::string elideDataUris(std::string line) {
+  for (size_t at = line.find("data:"); at != std::string::npos; at = line.find("data:", at)) {
+    const size_t end = line.find_first_of(" '\"", at);
+    line.replace(at, (end == std::string::npos ? line.size() : end) - at, "<data URI>");
+  }
+  return line;
+}
+
+std::string describeParseFailure(const std::string& err, const std::string& warn) {
+  const std::string line = elideDataUris(firstLine(err.empty() ? warn : err));
+  if (line.empty()) return "tinygltf could not parse the file";
+  if (line.rfind("[json.exception", 0) == 0) return "invalid JSON: " + line;
+  // Name the object behind tinygltf's two terse buffer messages.
+  if (line.rfind("Failed to decode 'uri'", 0) == 0 && line.find("Buffer") != std::string::npos)
+    return "buffer data URI is not valid base64 or is shorter than its byteLength";
+  if (line.rfind("File not found : ", 0) == 0)
+    return "buffer file not found: " + line.substr(std::strlen("File not found : "));
+  return line;
+}
+
+// tinygltf's warnings about images are dropped: loadTexture reports those itself, with the
+// consequence (factor fallback) spelled out.
+void forwardWarnings(const std::string& path, const std::string& warn,
+                     std::vector<std::string>& out) {
+  size_t start = 0;
+  while (start < warn.size()) {
+    size_t end = warn.find('\n', start);
+    if (end == std::string::npos) end = warn.size();
+    const std::string line = firstLine(warn.substr(start, end - start));
+    const bool aboutImage =
+        line.find("image") != std::string::npos || line.find("File not found") != std::string::npos;
+    if (!line.empty() && !aboutImage) out.push_back(path + ": " + line);
+    start = end + 1;
+  }
+}
+
+std::string baseDirOf(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? "." : parent.string();
+}
+
+tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
+                     std::vector<std::string>& warnings) {
+  tg::TinyGLTF loader;
+  loader.SetImageLoader(keepEncodedImage, nullptr);
+  tg::Model model;
+  std::string err, warn;
+  const std::string baseDir = baseDirOf(path);
+  const unsigned size = unsigned(bytes.size());
+  bool ok;
+  if (isGlb(bytes)) {
+    checkGlbLayout(bytes, path);
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, baseDir);
+  } else {
+    const char* text = reinterpret_cast<const char*>(bytes.data());
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, text, size, baseDir);
+  }
+  if (!ok) throw InputError(path, describeParseFailure(err, warn));
+  forwardWarnings(path, warn, warnings);
+  return model;
+}
+
+std::string unsupportedIn(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) {
+    if (std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
+        kSupportedExtensions.end())
+      continue;
+    list += (list.empty() ? "" : ", ") + name;
+  }
+  return list;
+}
+
+// glTF 2.0 §3.12: a loader must refuse a file that requires an extension it lacks.
+void checkExtensions(const tg::Model& model, const std::string& path,
+                     std::vector<std::string>& warnings) {
+  if (const std::string required = unsupportedIn(model.extensionsRequired); !required.empty())
+    throw InputError(path, "requires unsupported extension(s) " + required);
+  if (const std::string used = unsupportedIn(model.extensionsUsed); !used.empty())
+    warnings.push_back(path + ": ignores unsupported extension(s) " + used);
+}
+
+void checkBufferViews(const tg::Model& model, const std::string& path) {
+  for (size_t i = 0; i < model.bufferViews.size(); ++i) {
+    const tg::BufferView& view = model.bufferViews[i];
+    const std::string where = "bufferView " + std::to_string(i);
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+      throw InputError(path,
+                       where + ": buffer index " + std::to_string(view.buffer) + " out of range");
+    const size_t size = model.buffers[size_t(view.buffer)].data.size();
+    if (view.byteOffset > size || view.byteLength > size - view.byteOffset)
+      throw InputError(path, where + ": bytes " + std::to_string(view.byteOffset) + "+" +
+                                 std::to_string(view.byteLength) + " out of range of buffer " +
+                                 std::to_string(view.buffer) + " (" + std::to_string(size) +
+                                 " bytes)");
+    // glTF 2.0 §5.11.4: byteStride is a multiple of 4 in [4, 252].
+    if (view.byteStride != 0 &&
+        (view.byteStride < 4 || view.byteStride > 252 || view.byteStride % 4 != 0))
+      throw InputError(path, where + ": invalid byteStride " + std::to_string(view.byteStride));
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Conversion state
+
+struct Loader {
+  Loader(const std::string& p, const tg::Model& m)
+      : path(p),
+        baseDir(baseDirOf(p)),
+        model(m),
+        meshes(m.meshes.size()),
+        meshConverted(m.meshes.size(), false),
+        textures(m.textures.size(), kTextureNotLoaded),
+        visited(m.nodes.size(), false) {}
+
+  [[noreturn]] void fail(const std::string& problem) const { throw InputError(path, problem); }
+  void warn(const std::string& problem) { scene.warnings.push_back(path + ": " + problem); }
+
+  std::string path;
+  std::string baseDir;
+  const tg::Model& model;
+  Scene scene;
+  std::vector<std::vector<int>> meshes;  // glTF mesh -> photovr meshes (one per primitive)
+  std::vector<bool> meshConverted;
+  std::vector<int> textures;  // glTF texture -> photovr texture, -1 unusable
+  std::vector<bool> visited;  // nodes already placed, to catch cycles and shared children
+  int defaultMaterial = -1;
+};
+
+template <typename T>
+bool inRange(int index, const std::vector<T>& v) {
+  return index >= 0 && size_t(index) < v.size();
+}
+
+std::string named(const std::string& name) {
+  return "'" + name + "'";
+}
+
+// ---------------------------------------------------------------------------------------
+// Accessors (glTF 2.0 §3.6)
+
+struct AccessorView {
+  const uint8_t* data = nullptr;  // null: no bufferView, every element is zero
+  size_t count = 0;
+  size_t stride = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+int componentSize(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+// Checks that element count-1 ends inside the view: offset + stride * (count - 1) + element.
+bool fitsInView(const tg::Accessor& a, size_t stride, size_t element, size_t viewLength) {
+  if (a.count == 0) return true;
+  if (a.byteOffset > viewLength || viewLength - a.byteOffset < element) return false;
+  return a.count - 1 <= (viewLength - a.byteOffset - element) / stride;
+}
+
+AccessorView viewAccessor(const Loader& ld, int index, const std::string& what) {
+  if (!inRange(index, ld.model.accessors))
+    ld.fail(what + ": accessor index " + std::to_string(index) + " out of range");
+  const tg::Accessor& a = ld.model.accessors[size_t(index)];
+  const std::string where = what + " (accessor " + std::to_string(index) + ")";
+  if (a.sparse.isSparse) ld.fail(where + ": sparse accessors are not supported");
+  AccessorView v;
+  v.count = a.count;
+  v.componentType = a.componentType;
+  v.components = tg::GetNumComponentsInType(uint32_t(a.type));
+  v.normalized = a.normalized;
+  const int size = componentSize(a.componentType);
+  if (size <= 0 || v.components <= 0) ld.fail(where + ": invalid componentType or type");
+  const size_t element = size_t(size) * size_t(v.components);
+  if (a.bufferView < 0) {
+    if (a.count > kMaxZeroAccessorCount) ld.fail(where + ": implausible count");
+    return v;
+  }
+  if (!inRange(a.bufferView, ld.model.bufferViews))
+    ld.fail(where + ": bufferView index " + std::to_string(a.bufferView) + " out of range");
+  const tg::BufferView& view = ld.model.bufferViews[size_t(a.bufferView)];
+  v.stride = view.byteStride ? view.byteStride : element;
+  if (v.stride < element) ld.fail(where + ": byteStride is smaller than one element");
+  if (!fitsInView(a, v.stride, element, view.byteLength))
+    ld.fail(where + ": " + std::to_string(a.count) + " elements at offset " +
+            std::to_string(a.byteOffset) + " are out of range of bufferView " +
+            std::to_string(a.bufferView) + " (" + std::to_string(view.byteLength) + " bytes)");
+  v.data = ld.model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+  return v;
+}
+
+template <typename T>
+T load(const uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return v;
+}
+
+// Normalised integers as glTF 2.0 §3.11 defines them (signed: max(c / MAX, -1)).
+float componentAt(const AccessorView& v, size_t i, int c) {
+  if (!v.data) return 0.0f;
+  const uint8_t* p = v.data + i * v.stride + size_t(c) * size_t(componentSize(v.componentType));
+  switch (v.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return v.normalized ? p[0] / 255.0f : float(p[0]);
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const float x = float(load<int8_t>(p));
+      return v.normalized ? std::max(x / 127.0f, -1.0f) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return v.normalized ? load<uint16_t>(p) / 65535.0f : float(load<uint16_t>(p));
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      const float x = float(load<int16_t>(p));
+      return v.normalized ? std::max(x / 32767.0f, -1.0f) : x;
+    }
+    default:
+      return float(load<uint32_t>(p));
+  }
+}
+
+template <int N>
+std::vector<glm::vec<N, float>> readVectors(const Loader& ld, int accessor,
+                                            const std::string& what) {
+  const AccessorView v = viewAccessor(ld, accessor, what);
+  if (v.components != N)
+    ld.fail(what + ": accessor has " + std::to_string(v.components) + " components, expected " +
+            std::to_string(N));
+  std::vector<glm::vec<N, float>> out(v.count);
+  for (size_t i = 0; i < v.count; ++i)
+    for (int c = 0; c < N; ++c) out[i][c] = componentAt(v, i, c);
+  return out;
+}
+
+// glTF 2.0 §3.7.2.1: indices are unsigned byte, short or int scalars.
+std::vector<uint32_t> readIndices(const Loader& ld, int accessor, const std::string& what) {
+  const AccessorView v = viewAccessor(ld, accessor, what);
+  const bool unsignedType = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                            v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                            v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  if (v.components != 1 || !unsignedType)
+    ld.fail(what + ": indices must be unsigned byte, short or int scalars");
+  std::vector<uint32_t> out(v.count, 0);
+  if (!v.data) return out;
+  for (size_t i = 0; i < v.count; ++i) {
+    const uint8_t* p = v.data + i * v.stride;
+    if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) out[i] = p[0];
+    if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) out[i] = load<uint16_t>(p);
+    if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) out[i] = load<uint32_t>(p);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Textures (glTF 2.0 §3.8)
+
+std::string textureName(const Loader& ld, int index) {
+  const tg::Texture& t = ld.model.textures[size_t(index)];
+  if (!t.name.empty()) return t.name;
+  if (inRange(t.source, ld.model.images)) {
+    const tg::Image& image = ld.model.images[size_t(t.source)];
+    if (!image.name.empty()) return image.name;
+    if (!image.uri.empty() && !tg::IsDataURI(image.uri)) return image.uri;
+  }
+  return "texture#" + std::to_string(index);
+}
+
+// The encoded file bytes of an image, or empty with 'problem' set.
+std::vector<uint8_t> encodedImage(const Loader& ld, const tg::Image& image, std::string& problem) {
+  if (image.bufferView >= 0) {
+    // Range-checked by checkBufferViews; tinygltf already refused an out-of-range index.
+    const tg::BufferView& view = ld.model.bufferViews[size_t(image.bufferView)];
+    const uint8_t* begin = ld.model.buffers[size_t(view.buffer)].data.data() + view.byteOffset;
+    return std::vector<uint8_t>(begin, begin + view.byteLength);
+  }
+  if (image.image.empty()) {
+    const bool external = !image.uri.empty() && !tg::IsDataURI(image.uri);
+    std::error_code ec;
+    if (external && !fs::exists(fs::path(ld.baseDir) / image.uri, ec))
+      problem = "file not found";
+    else
+      problem = external ? "cannot read the file" : "no image data";
+  }
+  return image.image;
+}
+
+// Expands 1-4 channels to RGBA: gray replicated, alpha 255 when absent.
+void expandToRgba(const std::vector<uint8_t>& raw, int channels, std::vector<uint8_t>& rgba) {
+  const size_t pixels = raw.size() / size_t(channels);
+  rgba.resize(pixels * 4);
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint8_t* s = &raw[i * size_t(channels)];
+    uint8_t* d = &rgba[i * 4];
+    const bool color = channels >= 3;
+    d[0] = s[0];
+    d[1] = color ? s[1] : s[0];
+    d[2] = color ? s[2] : s[0];
+    d[3] = channels == 4 ? s[3] : (channels == 2 ? s[1] : 255);
+  }
+}
+
+// Not image_io's decodeImageRGBA8: that lets OpenImageIO premultiply colour by alpha on
+// read, while glTF colours are straight alpha (glTF 2.0 §3.9.2), so a half-transparent
+// texel would come back darkened. Throws InputError with the bare problem.
+void decodeStraightRgba8(const std::vector<uint8_t>& bytes, Texture& texture) {
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  void* proxy = &reader;
+  OIIO::ImageSpec config;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  // The format is sniffed from the magic bytes; the name only needs a plausible extension.
+  auto in =
+      OIIO::ImageInput::open(bytes.size() > 3 && bytes[1] == 'P' ? "m.png" : "m.jpg", &config);
+  if (!in) throw InputError("", "cannot decode image: " + firstLine(OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  const int c = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || c <= 0 || c > 4 ||
+      int64_t(spec.width) * spec.height > (int64_t(1) << 28))
+    throw InputError("", "implausible image size or channel count");
+  std::vector<uint8_t> raw(size_t(spec.width) * size_t(spec.height) * size_t(c));
+  if (!in->read_image(0, 0, 0, c, OIIO::TypeDesc::UINT8, raw.data()))
+    throw InputError("", "corrupt or truncated image: " + firstLine(in->geterror()));
+  texture.width = spec.width;
+  texture.height = spec.height;
+  expandToRgba(raw, c, texture.rgba);
+}
+
+Texture::Wrap wrapMode(int samplerWrap) {
+  switch (samplerWrap) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return Texture::Wrap::Clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return Texture::Wrap::Mirror;
+    default:
+      return Texture::Wrap::Repeat;
+  }
+}
+
+void applySampler(const Loader& ld, int sampler, Texture& texture) {
+  if (sampler < 0) return;  // §3.8.4: no sampler means repeat wrapping, auto filtering
+  const tg::Sampler& s = ld.model.samplers[size_t(sampler)];
+  texture.wrapS = wrapMode(s.wrapS);
+  texture.wrapT = wrapMode(s.wrapT);
+  texture.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+}
+
+// Decodes one glTF texture; a missing or undecodable image is a warning, not an error, so
+// a scene with one broken texture still renders with the material's factors.
+std::optional<Texture> loadTexture(Loader& ld, int index, const std::string& where) {
+  const tg::Texture& gt = ld.model.textures[size_t(index)];
+  if (gt.sampler >= 0 && !inRange(gt.sampler, ld.model.samplers))
+    ld.fail(where + ": sampler index " + std::to_string(gt.sampler) + " out of range");
+  if (gt.source >= 0 && !inRange(gt.source, ld.model.images))
+    ld.fail(where + ": image index " + std::to_string(gt.source) + " out of range");
+  Texture texture;
+  texture.name = textureName(ld, index);
+  const std::string fallback = ", using the material factor";
+  if (gt.source < 0) {
+    ld.warn("texture " + named(texture.name) + ": no image source" + fallback);
+    return std::nullopt;
+  }
+  std::string problem;
+  const std::vector<uint8_t> bytes = encodedImage(ld, ld.model.images[size_t(gt.source)], problem);
+  if (!problem.empty()) {
+    ld.warn("texture " + named(texture.name) + ": " + problem + fallback);
+    return std::nullopt;
+  }
+  try {
+    decodeStraightRgba8(bytes, texture);
+  } catch (const InputError& e) {
+    ld.warn("texture " + named(texture.name) + ": " + firstLine(e.what()) + fallback);
+    return std::nullopt;
+  }
+  applySampler(ld, gt.sampler, texture);
+  return texture;
+}
+
+int sceneTexture(Loader& ld, int index, const std::string& where) {
+  if (!inRange(index, ld.model.textures))
+    ld.fail(where + ": texture index " + std::to_string(index) + " out of range");
+  int& slot = ld.textures[size_t(index)];
+  if (slot != kTextureNotLoaded) return slot;
+  slot = -1;
+  std::optional<Texture> texture = loadTexture(ld, index, where);
+  if (texture) {
+    slot = int(ld.scene.textures.size());
+    ld.scene.textures.push_back(std::move(*texture));
+  }
+  return slot;
+}
+
+float numberOr(const tg::Value& object, const char* key, float fallback) {
+  if (!object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+  return float(object.Get(key).GetNumberAsDouble());
+}
+
+glm::vec2 vec2Or(const tg::Value& object, const char* key, glm::vec2 fallback) {
+  if (!object.Has(key)) return fallback;
+  const tg::Value& a = object.Get(key);
+  if (!a.IsArray() || a.ArrayLen() != 2 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber())
+    return fallback;
+  return {float(a.Get(0).GetNumberAsDouble()), float(a.Get(1).GetNumberAsDouble())};
+}
+
+// KHR_texture_transform, including its texCoord override.
+void applyTextureTransform(const tg::ExtensionMap& extensions, TextureRef& ref) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end() || !it->second.IsObject()) return;
+  const tg::Value& t = it->second;
+  ref.transform.offset = vec2Or(t, "offset", glm::vec2(0.0f));
+  ref.transform.rotation = numberOr(t, "rotation", 0.0f);
+  ref.transform.scale = vec2Or(t, "scale", glm::vec2(1.0f));
+  if (t.Has("texCoord") && t.Get("texCoord").IsNumber())
+    ref.texCoord = t.Get("texCoord").GetNumberAsInt();
+}
+
+template <typename Info>
+TextureRef textureRef(Loader& ld, const Info& info, const std::string& where) {
+  TextureRef ref;
+  if (info.index < 0) return ref;
+  ref.texCoord = info.texCoord;
+  applyTextureTransform(info.extensions, ref);
+  if (ref.texCoord < 0 || ref.texCoord > 1) {
+    ld.warn(where + ": uses TEXCOORD_" + std::to_string(ref.texCoord) +
+            ", only 0 and 1 are supported; using the material factor");
+    return TextureRef{};
+  }
+  ref.texture = sceneTexture(ld, info.index, where);
+  return ref;
+}
+
+// ---------------------------------------------------------------------------------------
+// Materials (glTF 2.0 §3.9)
+
+glm::vec4 vec4Or(const std::vector<double>& v, glm::vec4 fallback) {
+  return v.size() == 4 ? glm::vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3])) : fallback;
+}
+
+glm::vec3 vec3Or(const std::vector<double>& v, glm::vec3 fallback) {
+  return v.size() == 3 ? glm::vec3(float(v[0]), float(v[1]), float(v[2])) : fallback;
+}
+
+float emissiveStrength(const tg::Material& gm) {
+  const auto it = gm.extensions.find("KHR_materials_emissive_strength");
+  if (it == gm.extensions.end() || !it->second.IsObject()) return 1.0f;
+  return numberOr(it->second, "emissiveStrength", 1.0f);
+}
+
+AlphaMode alphaMode(Loader& ld, const tg::Material& gm, const std::string& where) {
+  if (gm.alphaMode == "MASK") return AlphaMode::Mask;
+  if (gm.alphaMode == "BLEND") {
+    ld.warn(where + ": alphaMode BLEND is rendered as opaque");
+    return AlphaMode::Blend;
+  }
+  if (gm.alphaMode != "OPAQUE") ld.warn(where + ": unknown alphaMode '" + gm.alphaMode + "'");
+  return AlphaMode::Opaque;
+}
+
+void convertTextures(Loader& ld, const tg::Material& gm, Material& m, const std::string& where) {
+  const tg::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  m.baseColorTexture = textureRef(ld, pbr.baseColorTexture, where + " baseColorTexture");
+  m.metallicRoughnessTexture =
+      textureRef(ld, pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
+  m.normalTexture = textureRef(ld, gm.normalTexture, where + " normalTexture");
+  m.occlusionTexture = textureRef(ld, gm.occlusionTexture, where + " occlusionTexture");
+  m.emissiveTexture = textureRef(ld, gm.emissiveTexture, where + " emissiveTexture");
+}
+
+Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
+  Material m;
+  m.name = gm.name.empty() ? "material#" + std::to_string(index) : gm.name;
+  const std::string where = "material " + named(m.name);
+  const tg::PbrMetallicRoughness& pbr = gm.pbrMetallicRoughness;
+  m.baseColorFactor = vec4Or(pbr.baseColorFactor, glm::vec4(1.0f));
+  m.metallicFactor = float(pbr.metallicFactor);
+  m.roughnessFactor = float(pbr.roughnessFactor);
+  m.emissiveFactor = vec3Or(gm.emissiveFactor, glm::vec3(0.0f));
+  m.emissiveStrength = emissiveStrength(gm);
+  m.normalScale = float(gm.normalTexture.scale);
+  m.occlusionStrength = float(gm.occlusionTexture.strength);
+  m.alphaMode = alphaMode(ld, gm, where);
+  m.alphaCutoff = float(gm.alphaCutoff);
+  m.doubleSided = gm.doubleSided;
+  convertTextures(ld, gm, m, where);
+  return m;
+}
+
+// The glTF default material (§3.9.6) is appended only when a primitive needs it.
+int materialIndex(Loader& ld, int material, const std::string& where) {
+  if (material < 0) {
+    if (ld.defaultMaterial < 0) {
+      ld.defaultMaterial = int(ld.scene.materials.size());
+      ld.scene.materials.push_back(Material{});
+      ld.scene.materials.back().name = "default";
+    }
+    return ld.defaultMaterial;
+  }
+  if (!inRange(material, ld.model.materials))
+    ld.fail(where + ": material index " + std::to_string(material) + " out of range");
+  return material;
+}
+
+// ---------------------------------------------------------------------------------------
+// Meshes (glTF 2.0 §3.7)
+
+// Strips and fans to lists with the winding rules of §3.7.2.1.
+std::vector<uint32_t> toTriangleList(const std::vector<uint32_t>& v, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return v;
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+      out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+  }
+  return out;
+}
+
+void checkCount(const Loader& ld, size_t count, size_t vertices, const std::string& what) {
+  if (count != vertices)
+    ld.fail(what + ": has " + std::to_string(count) + " entries for " + std::to_string(vertices) +
+            " vertices");
+}
+
+void readAttributes(const Loader& ld, const tg::Primitive& prim, Mesh& mesh,
+                    const std::string& where) {
+  const auto find = [&](const char* name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  if (find("POSITION") < 0) ld.fail(where + ": has no POSITION attribute");
+  mesh.positions = readVectors<3>(ld, find("POSITION"), where + " POSITION");
+  const size_t n = mesh.positions.size();
+  if (find("NORMAL") >= 0) mesh.normals = readVectors<3>(ld, find("NORMAL"), where + " NORMAL");
+  if (find("TANGENT") >= 0) mesh.tangents = readVectors<4>(ld, find("TANGENT"), where + " TANGENT");
+  if (find("TEXCOORD_0") >= 0) mesh.uv0 = readVectors<2>(ld, find("TEXCOORD_0"), where + " UV0");
+  if (find("TEXCOORD_1") >= 0) mesh.uv1 = readVectors<2>(ld, find("TEXCOORD_1"), where + " UV1");
+  if (!mesh.normals.empty()) checkCount(ld, mesh.normals.size(), n, where + " NORMAL");
+  if (!mesh.tangents.empty()) checkCount(ld, mesh.tangents.size(), n, where + " TANGENT");
+  if (!mesh.uv0.empty()) checkCount(ld, mesh.uv0.size(), n, where + " TEXCOORD_0");
+  if (!mesh.uv1.empty()) checkCount(ld, mesh.uv1.size(), n, where + " TEXCOORD_1");
+}
+
+// Returns false if any normal has zero length (it cannot be normalised).
+bool normalizeAll(std::vector<glm::vec3>& normals) {
+  for (glm::vec3& n : normals) {
+    const float len = glm::length(n);
+    if (!(len > 0.0f)) return false;
+    n /= len;
+  }
+  return true;
+}
+
+void checkTangents(const Loader& ld, const Mesh& mesh) {
+  for (size_t i = 0; i < mesh.tangents.size(); ++i) {
+    const glm::vec4& t = mesh.tangents[i];
+    if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z) || !std::isfinite(t.w))
+      ld.fail("mesh " + named(mesh.name) + ": non-finite TANGENT at vertex " + std::to_string(i));
+  }
+}
+
+// Runs after validateMesh, so every index is in range.
+void finishShading(Loader& ld, Mesh& mesh) {
+  checkTangents(ld, mesh);
+  if (!mesh.normals.empty() && !normalizeAll(mesh.normals)) {
+    ld.warn("mesh " + named(mesh.name) + ": zero-length normals, using flat normals");
+    mesh.normals.clear();
+  }
+  if (mesh.normals.empty()) makeFlatShaded(mesh);  // §3.7.2.1: flat normals when absent
+  const Material& material = ld.scene.materials[size_t(mesh.material)];
+  if (material.normalTexture.valid() && mesh.tangents.empty()) computeTangents(mesh);
+}
+
+std::string primitiveName(const tg::Mesh& gm, int meshIndex, size_t primitive) {
+  std::string name = gm.name.empty() ? "mesh#" + std::to_string(meshIndex) : gm.name;
+  if (gm.primitives.size() > 1) name += "/" + std::to_string(primitive);
+  return name;
+}
+
+std::optional<Mesh> convertPrimitive(Loader& ld, int meshIndex, size_t p) {
+  const tg::Mesh& gm = ld.model.meshes[size_t(meshIndex)];
+  const tg::Primitive& prim = gm.primitives[p];
+  Mesh mesh;
+  mesh.name = primitiveName(gm, meshIndex, p);
+  const std::string where = "mesh " + named(mesh.name);
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ld.warn(where + ": primitive mode " + std::to_string(mode) +
+            " (points or lines) skipped, only triangles are rendered");
+    return std::nullopt;
+  }
+  readAttributes(ld, prim, mesh, where);
+  std::vector<uint32_t> indices(mesh.positions.size());
+  for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
+  if (prim.indices >= 0) indices = readIndices(ld, prim.indices, where + " indices");
+  mesh.indices = toTriangleList(indices, mode);
+  mesh.material = materialIndex(ld, prim.material, where);
+  validateMesh(mesh, ld.path);
+  finishShading(ld, mesh);
+  validateMesh(mesh, ld.path);
+  return mesh;
+}
+
+const std::vector<int>& sceneMeshes(Loader& ld, int meshIndex) {
+  if (ld.meshConverted[size_t(meshIndex)]) return ld.meshes[size_t(meshIndex)];
+  const tg::Mesh& gm = ld.model.meshes[size_t(meshIndex)];
+  std::vector<int>& out = ld.meshes[size_t(meshIndex)];
+  for (size_t p = 0; p < gm.primitives.size(); ++p) {
+    std::optional<Mesh> mesh = convertPrimitive(ld, meshIndex, p);
+    if (!mesh) continue;
+    out.push_back(int(ld.scene.meshes.size()));
+    ld.scene.meshes.push_back(std::move(*mesh));
+  }
+  ld.meshConverted[size_t(meshIndex)] = true;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Nodes, lights and cameras (glTF 2.0 §3.5)
+
+bool isFinite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+glm::mat4 trsMatrix(const Loader& ld, const tg::Node& n, const std::string& where) {
+  const bool badSizes = (!n.translation.empty() && n.translation.size() != 3) ||
+                        (!n.rotation.empty() && n.rotation.size() != 4) ||
+                        (!n.scale.empty() && n.scale.size() != 3);
+  if (badSizes) ld.fail(where + ": translation, rotation or scale has the wrong length");
+  glm::mat4 m(1.0f);
+  if (!n.translation.empty()) m = glm::translate(m, vec3Or(n.translation, glm::vec3(0.0f)));
+  if (!n.rotation.empty()) {
+    // glTF stores quaternions as (x, y, z, w); glm's constructor takes w first.
+    const glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                      float(n.rotation[2]));
+    if (glm::length(q) > 0.0f) m = m * glm::mat4_cast(glm::normalize(q));
+  }
+  if (!n.scale.empty()) m = glm::scale(m, vec3Or(n.scale, glm::vec3(1.0f)));
+  return m;
+}
+
+glm::mat4 localTransform(const Loader& ld, const tg::Node& n, const std::string& where) {
+  glm::mat4 m(1.0f);
+  if (!n.matrix.empty()) {
+    if (n.matrix.size() != 16) ld.fail(where + ": matrix must have 16 numbers");
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(n.matrix[size_t(i)]);  // column-major
+  } else {
+    m = trsMatrix(ld, n, where);
+  }
+  if (!isFinite(m)) ld.fail(where + ": non-finite transform");
+  return m;
+}
+
+Light convertLight(Loader& ld, const tg::Light& gl, const std::string& name) {
+  Light light;
+  light.name = name;
+  if (gl.type == "spot") light.type = Light::Type::Spot;
+  if (gl.type == "directional") light.type = Light::Type::Directional;
+  if (gl.type != "point" && gl.type != "spot" && gl.type != "directional")
+    ld.warn("light " + named(name) + ": unknown type '" + gl.type + "', treated as a point light");
+  light.color = vec3Or(gl.color, glm::vec3(1.0f));
+  light.intensity = float(gl.intensity);
+  light.range = float(gl.range);
+  light.innerConeAngle = float(gl.spot.innerConeAngle);
+  light.outerConeAngle = float(gl.spot.outerConeAngle);
+  return light;
+}
+
+void addLight(Loader& ld, const tg::Node& node, const glm::mat4& world, const std::string& where) {
+  const auto it = node.extensions.find("KHR_lights_punctual");
+  if (it == node.extensions.end()) return;
+  const tg::Value& ext = it->second;
+  if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber())
+    ld.fail(where + ": KHR_lights_punctual without a light index");
+  const int index = ext.Get("light").GetNumberAsInt();
+  if (!inRange(index, ld.model.lights))
+    ld.fail(where + ": light index " + std::to_string(index) + " out of range");
+  const tg::Light& gl = ld.model.lights[size_t(index)];
+  Light light = convertLight(ld, gl, gl.name.empty() ? "light#" + std::to_string(index) : gl.name);
+  // KHR_lights_punctual: lights sit at the node origin and shine along the node's -Z.
+  light.position = glm::vec3(world[3]);
+  light.direction = glm::normalize(glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f));
+  ld.scene.lights.push_back(light);
+}
+
+glm::quat rotationOf(const glm::mat4& world) {
+  glm::mat3 r(world);
+  for (int c = 0; c < 3; ++c) r[c] = glm::normalize(r[c]);  // drop the node's scale
+  return glm::normalize(glm::quat_cast(r));
+}
+
+void addCamera(Loader& ld, const tg::Node& node, const glm::mat4& world, const std::string& where) {
+  if (node.camera < 0) return;
+  if (!inRange(node.camera, ld.model.cameras))
+    ld.fail(where + ": camera index " + std::to_string(node.camera) + " out of range");
+  const tg::Camera& gc = ld.model.cameras[size_t(node.camera)];
+  Camera camera;
+  camera.name = gc.name.empty() ? "camera#" + std::to_string(node.camera) : gc.name;
+  if (gc.type != "perspective" || !(gc.perspective.yfov > 0.0)) {
+    ld.warn("camera " + named(camera.name) +
+            ": only perspective cameras with yfov > 0 are supported; skipped");
+    return;
+  }
+  camera.yfov = float(gc.perspective.yfov);
+  camera.aspect = float(gc.perspective.aspectRatio);
+  camera.znear = float(gc.perspective.znear);
+  camera.zfar = float(gc.perspective.zfar);
+  camera.position = glm::vec3(world[3]);
+  camera.orientation = rotationOf(world);
+  ld.scene.cameras.push_back(camera);
+}
+
+void addMeshInstances(Loader& ld, const tg::Node& node, const glm::mat4& world,
+                      const std::string& where, const std::string& name) {
+  if (node.mesh < 0) return;
+  if (!inRange(node.mesh, ld.model.meshes))
+    ld.fail(where + ": mesh index " + std::to_string(node.mesh) + " out of range");
+  for (int mesh : sceneMeshes(ld, node.mesh)) {
+    Instance instance;
+    instance.mesh = mesh;
+    instance.transform = world;
+    instance.previousTransform = world;
+    instance.node = name;
+    ld.scene.instances.push_back(instance);
+  }
+}
+
+// Places one node: checks it, adds its mesh instances, light and camera; returns its world
+// transform.
+glm::mat4 placeNode(Loader& ld, int index, const glm::mat4& parent) {
+  if (!inRange(index, ld.model.nodes))
+    ld.fail("node index " + std::to_string(index) + " out of range");
+  const tg::Node& node = ld.model.nodes[size_t(index)];
+  const std::string name = node.name.empty() ? "node#" + std::to_string(index) : node.name;
+  const std::string where = "node " + named(name);
+  // §3.5.3: the hierarchy is a set of disjoint trees; a second visit means a cycle or a
+  // node with two parents, either of which would loop forever or multiply instances.
+  if (ld.visited[size_t(index)])
+    ld.fail(where + ": reached twice, the node hierarchy has a cycle or a shared child");
+  ld.visited[size_t(index)] = true;
+  const glm::mat4 world = parent * localTransform(ld, node, where);
+  addMeshInstances(ld, node, world, where, name);
+  addLight(ld, node, world, where);
+  addCamera(ld, node, world, where);
+  return world;
+}
+
+// Depth-first, parents before children, with an explicit stack: a file may nest nodes
+// thousands deep, which recursion would turn into a stack overflow.
+void placeTree(Loader& ld, int root) {
+  std::vector<std::pair<int, glm::mat4>> pending = {{root, glm::mat4(1.0f)}};
+  while (!pending.empty()) {
+    const auto [index, parent] = pending.back();
+    pending.pop_back();
+    const glm::mat4 world = placeNode(ld, index, parent);
+    const std::vector<int>& children = ld.model.nodes[size_t(index)].children;
+    for (auto child = children.rbegin(); child != children.rend(); ++child)
+      pending.emplace_back(*child, world);
+  }
+}
+
+// The default scene, else scene 0; a file without scenes shows every parentless node.
+std::vector<int> rootNodes(const Loader& ld) {
+  const tg::Model& m = ld.model;
+  if (!m.scenes.empty()) {
+    const int scene = m.defaultScene < 0 ? 0 : m.defaultScene;
+    if (!inRange(scene, m.scenes))
+      ld.fail("default scene index " + std::to_string(scene) + " out of range");
+    return m.scenes[size_t(scene)].nodes;
+  }
+  std::vector<bool> isChild(m.nodes.size(), false);
+  for (const tg::Node& node : m.nodes)
+    for (int child : node.children)
+      if (inRange(child, m.nodes)) isChild[size_t(child)] = true;
+  std::vector<int> roots;
+  for (size_t i = 0; i < m.nodes.size(); ++i)
+    if (!isChild[i]) roots.push_back(int(i));
+  return roots;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+  const std::vector<uint8_t> bytes = readFile(path);
+  std::vector<std::string> warnings;
+  const tg::Model model = parseModel(path, bytes, warnings);
+  checkExtensions(model, path, warnings);
+  checkBufferViews(model, path);
+  Loader ld(path, model);
+  ld.scene.name = path;
+  ld.scene.warnings = std::move(warnings);
+  for (size_t i = 0; i < model.materials.size(); ++i)
+    ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
+  for (int root : rootNodes(ld)) placeTree(ld, root);
+  if (ld.scene.meshes.empty()) ld.fail("contains no triangle meshes");
+  return std::move(ld.scene);
+}
+
+}  // namespace photovr

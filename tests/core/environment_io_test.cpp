@@ -1,0 +1,141 @@
+#include "core/environment_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "core/error.h"
+#include "core/image_io.h"
+
+namespace photovr {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path testDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / "photovr_environment_io" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// 4x2 RGB radiance spanning six orders of magnitude, as real HDR skies do.
+ImageF sky() {
+  ImageF image(4, 2, 3);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const float base = std::pow(10.0f, float(x + 4 * y) - 3.0f);
+      float* p = image.at(x, y);
+      p[0] = base;
+      p[1] = 0.5f * base;
+      p[2] = 0.25f * base;
+    }
+  return image;
+}
+
+std::string loadError(const std::string& path) {
+  try {
+    loadEnvironment(path);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_NE(what.find(fs::path(path).filename().string()), std::string::npos) << what;
+    return what;
+  }
+  ADD_FAILURE() << path << " loaded without an error";
+  return "";
+}
+
+TEST(EnvironmentIo, ExrLoadsExactly) {
+  const ImageF image = sky();
+  const std::string path = (testDir() / "sky.exr").string();
+  writeImage(path, image);
+  std::string warning = "unset";
+  const Environment env = loadEnvironment(path, &warning);
+  EXPECT_EQ(env.type, Environment::Type::Map);
+  EXPECT_EQ(env.width, 4);
+  EXPECT_EQ(env.height, 2);
+  EXPECT_TRUE(warning.empty()) << warning;
+  ASSERT_EQ(env.pixels.size(), 8u);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const float* p = image.at(x, y);
+      EXPECT_EQ(env.pixels[size_t(y) * 4 + x], glm::vec3(p[0], p[1], p[2]));  // 32-bit float
+    }
+}
+
+TEST(EnvironmentIo, HdrLoadsWithinRgbePrecision) {
+  const ImageF image = sky();
+  const std::string path = (testDir() / "sky.hdr").string();
+  writeImage(path, image);
+  const Environment env = loadEnvironment(path);
+  ASSERT_EQ(env.pixels.size(), 8u);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int c = 0; c < 3; ++c) {
+        // RGBE keeps an 8-bit mantissa per channel under the pixel's largest exponent: error
+        // up to 1/256 of the largest channel, so 1% of it covers rounding with margin.
+        const float expected = image.at(x, y)[c];
+        const float largest = image.at(x, y)[0];
+        EXPECT_NEAR(env.pixels[size_t(y) * 4 + x][c], expected, 0.01f * largest) << x << y << c;
+      }
+}
+
+TEST(EnvironmentIo, GrayIsReplicatedAndAlphaDropped) {
+  const fs::path dir = testDir();
+  ImageF gray(2, 1, 1);
+  gray.data = {0.5f, 3.0f};
+  writeImage((dir / "gray.exr").string(), gray);
+  const Environment g = loadEnvironment((dir / "gray.exr").string());
+  EXPECT_EQ(g.pixels.at(1), glm::vec3(3.0f));
+  ImageF rgba(2, 1, 4);
+  rgba.data = {1, 2, 3, 0.5f, 4, 5, 6, 0};
+  writeImage((dir / "rgba.exr").string(), rgba);
+  const Environment c = loadEnvironment((dir / "rgba.exr").string());
+  EXPECT_EQ(c.pixels.at(0), glm::vec3(1, 2, 3));
+  EXPECT_EQ(c.pixels.at(1), glm::vec3(4, 5, 6));
+}
+
+TEST(EnvironmentIo, NonTwoToOneAspectIsAWarning) {
+  ImageF square(2, 2, 3);
+  const std::string path = (testDir() / "square.exr").string();
+  writeImage(path, square);
+  std::string warning;
+  const Environment env = loadEnvironment(path, &warning);
+  EXPECT_EQ(env.width, 2);
+  EXPECT_NE(warning.find("not 2:1"), std::string::npos) << warning;
+}
+
+TEST(EnvironmentIo, NegativeOrNonFinitePixelIsAnError) {
+  const fs::path dir = testDir();
+  ImageF bad = sky();
+  bad.at(1, 0)[2] = -0.5f;
+  writeImage((dir / "negative.exr").string(), bad);
+  EXPECT_NE(loadError((dir / "negative.exr").string()).find("pixel (1, 0)"), std::string::npos);
+  bad = sky();
+  bad.at(3, 1)[0] = std::numeric_limits<float>::infinity();
+  writeImage((dir / "inf.exr").string(), bad);
+  EXPECT_NE(loadError((dir / "inf.exr").string()).find("pixel (3, 1)"), std::string::npos);
+}
+
+TEST(EnvironmentIo, MissingFileIsAnError) {
+  EXPECT_NE(loadError((testDir() / "absent.hdr").string()).find("not found"), std::string::npos);
+}
+
+TEST(EnvironmentIo, TruncatedHdrIsAnError) {
+  const fs::path dir = testDir();
+  ImageF big(64, 32, 3);
+  for (size_t i = 0; i < big.data.size(); ++i) big.data[i] = float(i % 97) * 0.37f;
+  writeImage((dir / "full.hdr").string(), big);
+  std::ifstream in(dir / "full.hdr", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir / "cut.hdr", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  loadError((dir / "cut.hdr").string());
+}
+
+}  // namespace
+}  // namespace photovr

@@ -1,0 +1,496 @@
+#include "core/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "core/gltf_writer.h"
+#include "core/image_io.h"
+
+namespace photovr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder per test, so tests never see each other's files.
+fs::path testDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / "photovr_gltf_loader" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void writeFile(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 2]));
+    out += kAlphabet[(v >> 18) & 63];
+    out += kAlphabet[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append(std::string& bytes, std::initializer_list<T> values) {
+  for (T v : values) bytes.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+std::string dataUri(const std::string& bytes) {
+  return "data:application/octet-stream;base64," + base64(bytes);
+}
+
+// Triangle (0,0,0) (1,0,0) (0,1,0): 36 bytes of float positions, then 3 u16 indices.
+std::string triangleBuffer(float x0 = 0.0f) {
+  std::string b;
+  append<float>(b, {x0, 0, 0, 1, 0, 0, 0, 1, 0});
+  append<uint16_t>(b, {0, 1, 2});
+  return b;
+}
+
+// A minimal valid glTF; tests break one piece of it with replace().
+std::string triangleGltf(const std::string& buffer = triangleBuffer()) {
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0,"name":"tri"}],
+"meshes":[{"name":"tri","primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+"buffers":[{"byteLength":)" +
+         std::to_string(buffer.size()) + R"(,"uri":")" + dataUri(buffer) + R"("}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},
+               {"buffer":0,"byteOffset":36,"byteLength":6}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+              "min":[0,0,0],"max":[1,1,0]},
+             {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the glTF";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string writeGltf(const std::string& name, const std::string& json) {
+  const fs::path path = testDir() / name;
+  writeFile(path, json);
+  return path.string();
+}
+
+// Loads a file that must fail; checks the error policy: one line, naming the file.
+std::string loadError(const std::string& path) {
+  try {
+    loadGltf(path);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_NE(what.find(fs::path(path).filename().string()), std::string::npos) << what;
+    return what;
+  }
+  ADD_FAILURE() << path << " loaded without an error";
+  return "";
+}
+
+bool anyContains(const std::vector<std::string>& lines, const std::string& a,
+                 const std::string& b = "") {
+  for (const std::string& line : lines)
+    if (line.find(a) != std::string::npos && line.find(b) != std::string::npos) return true;
+  return false;
+}
+
+void expectMatNear(const glm::mat4& a, const glm::mat4& b, float tolerance) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << c << "," << r;
+}
+
+TEST(GltfLoader, MinimalTriangleLoadsExactPositions) {
+  const Scene scene = loadGltf(writeGltf("tri.gltf", triangleGltf()));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const Mesh& mesh = scene.meshes[0];
+  // Flat shading (no NORMAL) un-shares vertices, but a single triangle keeps its order.
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  EXPECT_EQ(mesh.positions[0], glm::vec3(0, 0, 0));  // exact: float32 copied, no arithmetic
+  EXPECT_EQ(mesh.positions[1], glm::vec3(1, 0, 0));
+  EXPECT_EQ(mesh.positions[2], glm::vec3(0, 1, 0));
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2}));
+  for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(scene.instances[0].transform, glm::mat4(1.0f));
+  EXPECT_EQ(scene.instances[0].node, "tri");
+  // No material: the glTF default material (§3.9.6).
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[mesh.material].baseColorFactor, glm::vec4(1.0f));
+  EXPECT_EQ(scene.materials[mesh.material].metallicFactor, 1.0f);
+  EXPECT_EQ(scene.materials[mesh.material].roughnessFactor, 1.0f);
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
+TEST(GltfLoader, HierarchyIsFlattenedAndMeshesShared) {
+  const std::string nodes =
+      R"("nodes":[{"name":"parent","translation":[1,2,3],"children":[1,2]},
+{"name":"a","mesh":0,"scale":[2,2,2]},
+{"name":"b","mesh":0,"rotation":[0,0.7071067811865476,0,0.7071067811865476],
+ "children":[3]},
+{"name":"c","mesh":0,"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]}],
+"scenes":[{"nodes":[0]}],)";
+  const std::string json = replaced(triangleGltf(), R"("scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0,"name":"tri"}],)",
+                                    nodes);
+  const Scene scene = loadGltf(writeGltf("tree.gltf", json));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.instances.size(), 3u);
+  const glm::mat4 parent = glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3));
+  const glm::mat4 rotY = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0));
+  // 1e-6: products of a few single-precision matrices with entries near 1.
+  expectMatNear(scene.instances[0].transform, glm::scale(parent, glm::vec3(2.0f)), 1e-6f);
+  expectMatNear(scene.instances[1].transform, parent * rotY, 1e-6f);
+  expectMatNear(scene.instances[2].transform,
+                parent * rotY * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5)), 1e-6f);
+  for (const Instance& instance : scene.instances) EXPECT_EQ(instance.mesh, 0);
+  EXPECT_EQ(scene.instances[2].node, "c");
+}
+
+TEST(GltfLoader, InterleavedNormalizedTexcoordsAndByteIndices) {
+  // Per vertex: float3 position, u8 x2 normalised uv, 2 bytes padding: stride 16.
+  std::string b;
+  const uint8_t uv[3][2] = {{0, 0}, {255, 0}, {0, 51}};
+  const float pos[3][3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  for (int v = 0; v < 3; ++v) {
+    append<float>(b, {pos[v][0], pos[v][1], pos[v][2]});
+    append<uint8_t>(b, {uv[v][0], uv[v][1], 0, 0});
+  }
+  append<uint8_t>(b, {2, 1, 0, 0});  // indices, u8, reversed order; one padding byte
+  std::string json = triangleGltf(b);
+  json = replaced(json, R"({"buffer":0,"byteOffset":0,"byteLength":36},
+               {"buffer":0,"byteOffset":36,"byteLength":6})",
+                  R"({"buffer":0,"byteOffset":0,"byteLength":48,"byteStride":16},
+               {"buffer":0,"byteOffset":48,"byteLength":3})");
+  json = replaced(json, R"("max":[1,1,0]},)",
+                  R"("max":[2,2,0]},
+{"bufferView":0,"byteOffset":12,"componentType":5121,"normalized":true,"count":3,"type":"VEC2"},)");
+  json = replaced(json, R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"})",
+                  R"({"bufferView":1,"componentType":5121,"count":3,"type":"SCALAR"})");
+  json = replaced(json, R"("indices":1)", R"("indices":2)");
+  json = replaced(json, R"({"POSITION":0})", R"({"POSITION":0,"TEXCOORD_0":1})");
+  const Scene scene = loadGltf(writeGltf("interleaved.gltf", json));
+  const Mesh& mesh = scene.meshes.at(0);
+  // Flat shading un-shares in index order 2, 1, 0.
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  EXPECT_EQ(mesh.positions[0], glm::vec3(0, 2, 0));
+  EXPECT_EQ(mesh.positions[2], glm::vec3(0, 0, 0));
+  ASSERT_EQ(mesh.uv0.size(), 3u);
+  EXPECT_EQ(mesh.uv0[0], glm::vec2(0.0f, 51.0f / 255.0f));  // §3.11: c / 255
+  EXPECT_EQ(mesh.uv0[1], glm::vec2(1.0f, 0.0f));
+  for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, -1));  // reversed winding
+}
+
+TEST(GltfLoader, StripsAndFansBecomeLists) {
+  std::string b;
+  append<float>(b, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  append<uint16_t>(b, {0, 1, 2});  // unused but keeps the default layout valid
+  std::string strip =
+      replaced(triangleGltf(b), R"("count":3,"type":"VEC3")", R"("count":4,"type":"VEC3")");
+  strip = replaced(strip, R"("byteLength":36})", R"("byteLength":48})");
+  strip = replaced(strip, R"("byteOffset":36,"byteLength":6)", R"("byteOffset":48,"byteLength":6)");
+  const std::string fan = replaced(strip, R"("indices":1)", R"("mode":6)");
+  strip = replaced(strip, R"("indices":1)", R"("mode":5)");
+  // §3.7.2.1: strip triangle i is (i, i+1+i%2, i+2-i%2); fan triangle i is (i+1, i+2, 0).
+  const Mesh s = loadGltf(writeGltf("strip.gltf", strip)).meshes.at(0);
+  ASSERT_EQ(s.positions.size(), 6u);
+  EXPECT_EQ(s.positions[3], glm::vec3(1, 0, 0));
+  EXPECT_EQ(s.positions[4], glm::vec3(1, 1, 0));
+  EXPECT_EQ(s.positions[5], glm::vec3(0, 1, 0));
+  for (const glm::vec3& n : s.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));  // consistent winding
+  const Mesh f = loadGltf(writeGltf("fan.gltf", fan)).meshes.at(0);
+  ASSERT_EQ(f.positions.size(), 6u);
+  EXPECT_EQ(f.positions[0], glm::vec3(1, 0, 0));
+  EXPECT_EQ(f.positions[2], glm::vec3(0, 0, 0));
+}
+
+TEST(GltfLoader, PointsAreSkippedWithAWarning) {
+  const std::string json = replaced(triangleGltf(), R"({"attributes":{"POSITION":0},"indices":1})",
+                                    R"({"attributes":{"POSITION":0},"mode":0},
+                                       {"attributes":{"POSITION":0},"indices":1})");
+  const Scene scene = loadGltf(writeGltf("points.gltf", json));
+  EXPECT_EQ(scene.meshes.size(), 1u);
+  EXPECT_TRUE(anyContains(scene.warnings, "points.gltf", "skipped"));
+  const std::string onlyPoints =
+      replaced(triangleGltf(), R"("indices":1)", R"("indices":1,"mode":0)");
+  EXPECT_NE(loadError(writeGltf("onlypoints.gltf", onlyPoints)).find("no triangle meshes"),
+            std::string::npos);
+}
+
+TEST(GltfLoader, ExternalTextureLoadsAndMissingOneFallsBackToFactor) {
+  const fs::path dir = testDir();
+  // Opaque texels: image_io's PNG writer treats alpha as premultiplied, so a translucent
+  // texel would not be stored as given (straight alpha is covered by the writer round trip).
+  Image8 image(2, 1, 4);
+  const uint8_t pixels[8] = {10, 20, 30, 255, 200, 100, 50, 255};
+  std::memcpy(image.data.data(), pixels, 8);
+  writeImage((dir / "tex.png").string(), image);
+  const std::string materials = R"("materials":[
+{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1,1],"baseColorTexture":{"index":0}},
+ "emissiveTexture":{"index":1}}],
+"textures":[{"source":0,"sampler":0},{"source":1}],
+"images":[{"uri":"tex.png"},{"uri":"nothere.png"}],
+"samplers":[{"magFilter":9728,"wrapS":33071,"wrapT":33648}],
+"buffers":)";
+  std::string json = replaced(triangleGltf(), R"("buffers":)", materials);
+  json = replaced(json, R"("indices":1)", R"("indices":1,"material":0)");
+  writeFile(dir / "textured.gltf", json);
+  const Scene scene = loadGltf((dir / "textured.gltf").string());
+  ASSERT_EQ(scene.textures.size(), 1u);
+  const Texture& t = scene.textures[0];
+  EXPECT_EQ(t.width, 2);
+  EXPECT_EQ(t.height, 1);
+  EXPECT_EQ(t.rgba, std::vector<uint8_t>(pixels, pixels + 8));
+  EXPECT_TRUE(t.nearest);
+  EXPECT_EQ(t.wrapS, Texture::Wrap::Clamp);
+  EXPECT_EQ(t.wrapT, Texture::Wrap::Mirror);
+  const Material& m = scene.materials.at(0);
+  EXPECT_EQ(m.baseColorTexture.texture, 0);
+  EXPECT_FALSE(m.emissiveTexture.valid());
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+  EXPECT_TRUE(anyContains(scene.warnings, "nothere.png", "file not found, using the material"));
+}
+
+TEST(GltfLoader, CorruptEmbeddedTextureIsAWarning) {
+  const std::string materials =
+      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
+"textures":[{"source":0,"name":"broken"}],
+"images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAAB"}],
+"buffers":)";
+  std::string json = replaced(triangleGltf(), R"("buffers":)", materials);
+  json = replaced(json, R"("indices":1)", R"("indices":1,"material":0)");
+  const Scene scene = loadGltf(writeGltf("corrupt_texture.gltf", json));
+  EXPECT_TRUE(scene.textures.empty());
+  EXPECT_FALSE(scene.materials.at(0).baseColorTexture.valid());
+  EXPECT_TRUE(anyContains(scene.warnings, "'broken'", "using the material factor"));
+}
+
+TEST(GltfLoader, RequiredUnsupportedExtensionIsAnError) {
+  const std::string json =
+      replaced(triangleGltf(), R"("scene":0,)",
+               R"("extensionsUsed":["KHR_draco_mesh_compression","KHR_lights_punctual"],
+"extensionsRequired":["KHR_draco_mesh_compression"],"scene":0,)");
+  const std::string error = loadError(writeGltf("draco.gltf", json));
+  EXPECT_NE(error.find("requires unsupported extension(s) KHR_draco_mesh_compression"),
+            std::string::npos);
+}
+
+TEST(GltfLoader, UsedUnsupportedExtensionIsAWarning) {
+  const std::string json =
+      replaced(triangleGltf(), R"("scene":0,)",
+               R"("extensionsUsed":["EXT_foo","KHR_texture_transform","EXT_bar"],"scene":0,)");
+  const Scene scene = loadGltf(writeGltf("used.gltf", json));
+  EXPECT_TRUE(
+      anyContains(scene.warnings, "used.gltf", "unsupported extension(s) EXT_foo, EXT_bar"));
+}
+
+TEST(GltfLoader, LightsCamerasAndTexCoordOverrideFromNodes) {
+  const std::string extras = R"("nodes":[{"mesh":0,"name":"tri"},
+{"name":"lamp","translation":[1,2,3],"rotation":[0.7071067811865476,0,0,0.7071067811865476],
+ "extensions":{"KHR_lights_punctual":{"light":0}}},
+{"name":"ortho","camera":0}],
+"scenes":[{"nodes":[0,1,2]}],
+"extensions":{"KHR_lights_punctual":{"lights":[{"type":"spot","color":[1,0.5,0.25],
+ "intensity":7,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}}]}},
+"cameras":[{"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}}],
+"materials":[{"emissiveTexture":{"index":0,"texCoord":0,
+ "extensions":{"KHR_texture_transform":{"texCoord":1,"rotation":0.5}}}}],
+"textures":[{"source":0}],
+"images":[{"uri":"absent.png"}],
+"meshes":)";
+  std::string json = replaced(triangleGltf(), R"("scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0,"name":"tri"}],
+"meshes":)",
+                              extras);
+  json = replaced(json, R"("indices":1)", R"("indices":1,"material":0)");
+  const Scene scene = loadGltf(writeGltf("lights.gltf", json));
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const Light& light = scene.lights[0];
+  EXPECT_EQ(light.type, Light::Type::Spot);
+  EXPECT_EQ(light.color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(light.intensity, 7.0f);
+  EXPECT_EQ(light.innerConeAngle, 0.1f);
+  EXPECT_EQ(light.outerConeAngle, 0.5f);
+  EXPECT_EQ(light.position, glm::vec3(1, 2, 3));
+  // +90 degrees about X turns the light's -Z onto +Y; 1e-6 for the single-precision rotation.
+  EXPECT_NEAR(light.direction.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(light.direction.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(light.direction.z, 0.0f, 1e-6f);
+  EXPECT_TRUE(scene.cameras.empty());
+  EXPECT_TRUE(anyContains(scene.warnings, "perspective", "skipped"));
+  // The texture file is missing, so the reference is dropped; the factor stays.
+  EXPECT_FALSE(scene.materials.at(0).emissiveTexture.valid());
+  EXPECT_TRUE(anyContains(scene.warnings, "absent.png", "file not found"));
+}
+
+TEST(GltfLoader, TexCoordOverrideAndTransformAreRead) {
+  const fs::path dir = testDir();
+  Image8 image(1, 1, 4);
+  image.data = {1, 2, 3, 255};
+  writeImage((dir / "one.png").string(), image);
+  const std::string materials = R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":
+{"index":0,"extensions":{"KHR_texture_transform":{"texCoord":1,"rotation":0.5,
+ "offset":[0.25,0.75],"scale":[2,4]}}}}}],
+"textures":[{"source":0}],"images":[{"uri":"one.png"}],
+"buffers":)";
+  std::string json = replaced(triangleGltf(), R"("buffers":)", materials);
+  json = replaced(json, R"("indices":1)", R"("indices":1,"material":0)");
+  writeFile(dir / "override.gltf", json);
+  const TextureRef ref =
+      loadGltf((dir / "override.gltf").string()).materials.at(0).baseColorTexture;
+  EXPECT_EQ(ref.texture, 0);
+  EXPECT_EQ(ref.texCoord, 1);  // the extension's texCoord overrides the textureInfo's
+  EXPECT_EQ(ref.transform.rotation, 0.5f);
+  EXPECT_EQ(ref.transform.offset, glm::vec2(0.25f, 0.75f));
+  EXPECT_EQ(ref.transform.scale, glm::vec2(2.0f, 4.0f));
+}
+
+// ---- Malformed input: each case is one clear line, never a crash ----
+
+TEST(GltfLoaderErrors, MissingFile) {
+  EXPECT_NE(loadError((testDir() / "absent.gltf").string()).find("not found"), std::string::npos);
+}
+
+TEST(GltfLoaderErrors, EmptyFile) {
+  EXPECT_NE(loadError(writeGltf("empty.gltf", "")).find("empty"), std::string::npos);
+}
+
+TEST(GltfLoaderErrors, BadJson) {
+  const std::string error = loadError(writeGltf("bad.gltf", "{\"asset\": {\"version\": "));
+  EXPECT_NE(error.find("JSON"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, TruncatedGlb) {
+  const fs::path dir = testDir();
+  Scene scene = loadGltf(writeGltf("tri.gltf", triangleGltf()));
+  writeGlb(scene, (dir / "full.glb").string());
+  std::ifstream in(dir / "full.glb", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (size_t keep : {size_t(10), bytes.size() / 2, bytes.size() - 4}) {
+    writeFile(dir / "cut.glb", bytes.substr(0, keep));
+    const std::string error = loadError((dir / "cut.glb").string());
+    EXPECT_NE(error.find("truncated"), std::string::npos) << keep << ": " << error;
+  }
+}
+
+TEST(GltfLoaderErrors, MissingExternalBuffer) {
+  const std::string json = replaced(triangleGltf(), dataUri(triangleBuffer()), "missing.bin");
+  const std::string error = loadError(writeGltf("nobin.gltf", json));
+  EXPECT_NE(error.find("buffer file not found: missing.bin"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, ExternalBufferShorterThanDeclared) {
+  const fs::path dir = testDir();
+  writeFile(dir / "short.bin", triangleBuffer().substr(0, 20));
+  writeFile(dir / "short.gltf", replaced(triangleGltf(), dataUri(triangleBuffer()), "short.bin"));
+  const std::string error = loadError((dir / "short.gltf").string());
+  EXPECT_NE(error.find("size mismatch"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, DataUriShorterThanDeclared) {
+  const std::string json = replaced(triangleGltf(), R"("byteLength":42,)", R"("byteLength":420,)");
+  const std::string error = loadError(writeGltf("shortdata.gltf", json));
+  EXPECT_NE(error.find("shorter than its byteLength"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, BufferViewOutOfRange) {
+  const std::string json = replaced(triangleGltf(), R"("byteOffset":36,"byteLength":6)",
+                                    R"("byteOffset":36,"byteLength":60)");
+  EXPECT_NE(loadError(writeGltf("view.gltf", json)).find("out of range"), std::string::npos);
+}
+
+TEST(GltfLoaderErrors, AccessorOutOfRange) {
+  const std::string json =
+      replaced(triangleGltf(), R"("count":3,"type":"VEC3")", R"("count":30,"type":"VEC3")");
+  const std::string error = loadError(writeGltf("accessor.gltf", json));
+  EXPECT_NE(error.find("out of range"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, SparseAccessorIsRejected) {
+  const std::string json =
+      replaced(triangleGltf(), R"("count":3,"type":"VEC3")",
+               R"("count":3,"type":"VEC3","sparse":{"count":1,"indices":{"bufferView":1,
+"componentType":5123},"values":{"bufferView":0}})");
+  EXPECT_NE(loadError(writeGltf("sparse.gltf", json)).find("sparse"), std::string::npos);
+}
+
+TEST(GltfLoaderErrors, IndexOutOfRange) {
+  std::string b;
+  append<float>(b, {0, 0, 0, 1, 0, 0, 0, 1, 0});
+  append<uint16_t>(b, {0, 1, 7});
+  const std::string error = loadError(writeGltf("index.gltf", triangleGltf(b)));
+  EXPECT_NE(error.find("index 7"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, NanVertex) {
+  const std::string error =
+      loadError(writeGltf("nan.gltf", triangleGltf(triangleBuffer(std::nanf("")))));
+  EXPECT_NE(error.find("non-finite POSITION"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, ZeroAreaOnlyMesh) {
+  std::string b;
+  append<float>(b, {1, 1, 1, 1, 1, 1, 1, 1, 1});
+  append<uint16_t>(b, {0, 1, 2});
+  const std::string error = loadError(writeGltf("flat.gltf", triangleGltf(b)));
+  EXPECT_NE(error.find("zero area"), std::string::npos) << error;
+}
+
+TEST(GltfLoaderErrors, BadReferences) {
+  const std::string mesh = replaced(triangleGltf(), R"({"mesh":0,)", R"({"mesh":5,)");
+  EXPECT_NE(loadError(writeGltf("mesh.gltf", mesh)).find("mesh index 5"), std::string::npos);
+  const std::string material =
+      replaced(triangleGltf(), R"("indices":1)", R"("indices":1,"material":3)");
+  EXPECT_NE(loadError(writeGltf("material.gltf", material)).find("material index 3"),
+            std::string::npos);
+  const std::string node = replaced(triangleGltf(), R"("nodes":[0])", R"("nodes":[4])");
+  EXPECT_NE(loadError(writeGltf("node.gltf", node)).find("node index 4"), std::string::npos);
+  const std::string accessor = replaced(triangleGltf(), R"("indices":1)", R"("indices":9)");
+  EXPECT_NE(loadError(writeGltf("acc.gltf", accessor)).find("out of"), std::string::npos);
+}
+
+TEST(GltfLoaderErrors, NodeCycle) {
+  const std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])",
+                                    R"("nodes":[{"mesh":0,"children":[1]},{"children":[0]}])");
+  EXPECT_NE(loadError(writeGltf("cycle.gltf", json)).find("cycle"), std::string::npos);
+}
+
+TEST(GltfLoader, VeryDeepHierarchyLoadsWithoutStackOverflow) {
+  std::string nodes = R"("nodes":[)";
+  const int depth = 20000;
+  for (int i = 0; i < depth; ++i)
+    nodes += R"({"translation":[0,1,0],"children":[)" + std::to_string(i + 1) + "]},";
+  nodes += R"({"mesh":0}])";
+  const std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])", nodes);
+  const Scene scene = loadGltf(writeGltf("deep.gltf", json));
+  ASSERT_EQ(scene.instances.size(), 1u);
+  // Exact: sums of 1.0 stay integers far below float's 2^24.
+  EXPECT_EQ(scene.instances[0].transform[3], glm::vec4(0, float(depth), 0, 1));
+}
+
+TEST(GltfLoaderErrors, NoMeshes) {
+  const std::string json =
+      replaced(triangleGltf(), R"({"mesh":0,"name":"tri"})", R"({"name":"empty"})");
+  EXPECT_NE(loadError(writeGltf("nomesh.gltf", json)).find("contains no triangle meshes"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace photovr
