@@ -20,6 +20,12 @@ using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
+// OpenImageIO's messages may span lines; photovr's errors are one line.
+std::string firstLine(const std::string& text) {
+  const std::string line = text.substr(0, text.find('\n'));
+  return line.empty() ? "unknown error" : line;
+}
+
 std::string temporaryPath(const std::string& path) {
   const fs::path p(path);
   // Keep the extension last: OpenImageIO picks the format by it.
@@ -34,11 +40,14 @@ void writePixels(const std::string& path, int w, int h, int c, TypeDesc type, co
   if (!parent.empty()) fs::create_directories(parent, ec);
   const std::string tmp = temporaryPath(path);
   auto out = ImageOutput::create(path);
-  if (!out) throw InputError(path, "no writer for this file type: " + OIIO::geterror());
+  if (!out) throw InputError(path, "no writer for this file type: " + firstLine(OIIO::geterror()));
   ImageSpec spec(w, h, c, type);
+  // Colour is straight (unassociated) alpha everywhere in photovr, as in glTF; without
+  // this OpenImageIO would premultiply on the way out.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   bool ok = out->open(tmp, spec) && out->write_image(type, pixels) && out->close();
   if (!ok) {
-    const std::string why = out->geterror();
+    const std::string why = firstLine(out->geterror());
     out.reset();
     fs::remove(tmp, ec);
     throw InputError(path, "cannot write: " + why);
@@ -64,7 +73,7 @@ void writeImage(const std::string& path, const Image8& image) {
 ImageF readImageF(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
   auto in = ImageInput::open(path);
-  if (!in) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  if (!in) throw InputError(path, "cannot read image: " + firstLine(OIIO::geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
       int64_t(spec.width) * spec.height > (int64_t(1) << 30))
@@ -72,7 +81,7 @@ ImageF readImageF(const std::string& path) {
                                std::to_string(spec.height));
   ImageF img(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.data.data()))
-    throw InputError(path, "corrupt or truncated image: " + in->geterror());
+    throw InputError(path, "corrupt or truncated image: " + firstLine(in->geterror()));
   return img;
 }
 
@@ -84,7 +93,7 @@ static Image8 toRGBA8(std::unique_ptr<ImageInput> in, const std::string& name) {
   const int c = spec.nchannels;
   std::vector<uint8_t> raw(size_t(spec.width) * spec.height * c);
   if (!in->read_image(0, 0, 0, c, TypeDesc::UINT8, raw.data()))
-    throw InputError(name, "corrupt or truncated image: " + in->geterror());
+    throw InputError(name, "corrupt or truncated image: " + firstLine(in->geterror()));
   Image8 img(spec.width, spec.height, 4);
   for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
     const uint8_t* s = &raw[i * c];
@@ -97,22 +106,30 @@ static Image8 toRGBA8(std::unique_ptr<ImageInput> in, const std::string& name) {
   return img;
 }
 
+// Asks readers to keep straight alpha (glTF colours are not premultiplied).
+static ImageSpec straightAlphaConfig() {
+  ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  return config;
+}
+
 Image8 readImageRGBA8(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
-  auto in = ImageInput::open(path);
-  if (!in) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  const ImageSpec config = straightAlphaConfig();
+  auto in = ImageInput::open(path, &config);
+  if (!in) throw InputError(path, "cannot read image: " + firstLine(OIIO::geterror()));
   return toRGBA8(std::move(in), path);
 }
 
 Image8 decodeImageRGBA8(const std::vector<uint8_t>& bytes, const std::string& name) {
   if (bytes.empty()) throw InputError(name, "empty image data");
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  OIIO::ImageSpec config;
+  OIIO::ImageSpec config = straightAlphaConfig();
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
   // The format is sniffed from the magic bytes; the name only needs a plausible extension.
   auto in = ImageInput::open(bytes.size() > 3 && bytes[1] == 'P' ? "mem.png" : "mem.jpg", &config);
-  if (!in) throw InputError(name, "cannot decode image: " + OIIO::geterror());
+  if (!in) throw InputError(name, "cannot decode image: " + firstLine(OIIO::geterror()));
   return toRGBA8(std::move(in), name);
 }
 

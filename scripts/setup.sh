@@ -14,6 +14,7 @@ PACKAGES=(
   libopenimageio-dev openimageio-tools
   libhidapi-dev
   libimgui-dev
+  xvfb xauth  # a virtual display for the glfw backend's tests
 )
 
 missing=()

@@ -113,6 +113,15 @@ TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
   EXPECT_EQ(readImageRGBA8(dir + "/gbuffer.png").width, 80);
 }
 
+TEST(Cli, GlfwWithoutADisplaySaysWhatToTryInstead) {
+  const auto r = runPhotovr("render --backend glfw --width 8 --height 8 --scene cornell "
+                            "--out /tmp/photovr-nodisplay </dev/null; unset DISPLAY; " +
+                            std::string(PHOTOVR_BINARY) + " render --backend glfw");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("glfw: no display"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--backend egl"), std::string::npos) << r.output;
+}
+
 TEST(Cli, UnwritableOutputIsAnErrorNotACrash) {
   const auto r = runPhotovr("render --scene cornell --backend osmesa --width 8 --height 8 --out "
                             "/proc/photovr-cannot-write");
