@@ -21,7 +21,9 @@ Image8 colourImage(const gl::GBufferImage& g, F pixel) {
   return out;
 }
 
-uint8_t unorm8(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+uint8_t unorm8(float v) {
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
 
 // Well-spread colours for consecutive ids (a 32-bit integer hash, "lowbias32" by
 // C. Wellons, 2018).

@@ -13,9 +13,9 @@ namespace photovr::app {
 
 // Images are flipped from GL's bottom-up rows to top-down files here.
 ImageF depthImage(const gl::GBufferImage& g);
-Image8 normalImage(const gl::GBufferImage& g);  // n * 0.5 + 0.5, background black
-Image8 albedoImage(const gl::GBufferImage& g);  // sRGB-encoded base colour
-Image8 idImage(const gl::GBufferImage& g);      // false colour per instance
+Image8 normalImage(const gl::GBufferImage& g);   // n * 0.5 + 0.5, background black
+Image8 albedoImage(const gl::GBufferImage& g);   // sRGB-encoded base colour
+Image8 idImage(const gl::GBufferImage& g);       // false colour per instance
 Image8 depthPreview(const gl::GBufferImage& g);  // depth scaled to the image's range
 
 // Albedo | normal over ids | depth, per eye at half size; eyes side by side.

@@ -33,7 +33,8 @@ int dispatch(int argc, char** argv) {
   }
   auto it = commands.find(name);
   if (it == commands.end())
-    throw photovr::UsageError("unknown command '" + name + "' (expected render, info or export-scene)");
+    throw photovr::UsageError("unknown command '" + name +
+                              "' (expected render, info or export-scene)");
   return it->second(photovr::app::Args(argv + 2, argv + argc));
 }
 

@@ -39,7 +39,9 @@ Options::Options(const std::vector<std::string>& args, const std::set<std::strin
   }
 }
 
-bool Options::has(const std::string& name) const { return values_.count(name) > 0; }
+bool Options::has(const std::string& name) const {
+  return values_.count(name) > 0;
+}
 
 std::string Options::text(const std::string& name, const std::string& fallback) const {
   auto it = values_.find(name);

@@ -60,7 +60,9 @@ glm::mat4 reversedZProjection(const FovTangents& fov, float n, float f) {
   return p;
 }
 
-glm::mat4 EyeCamera::unjitteredProjection() const { return reversedZProjection(fov, znear, zfar); }
+glm::mat4 EyeCamera::unjitteredProjection() const {
+  return reversedZProjection(fov, znear, zfar);
+}
 
 glm::mat4 EyeCamera::projection() const {
   // Shifting NDC by -2j/size moves what lands on the pixel centre c to the direction of
@@ -101,7 +103,9 @@ EyeCamera StereoRig::eye(Eye e, int width, int height, glm::vec2 jitter) const {
   return cam;
 }
 
-Pose poseOf(const Camera& camera) { return {camera.position, camera.orientation}; }
+Pose poseOf(const Camera& camera) {
+  return {camera.position, camera.orientation};
+}
 
 Pose lookAt(const glm::vec3& from, const glm::vec3& at) {
   const glm::vec3 forward = glm::normalize(at - from);

@@ -41,9 +41,9 @@ struct EyeCamera {
   Pose pose;
   FovTangents fov;
   float znear = 0.05f;
-  float zfar = 0.0f;            // 0 = infinite reversed-Z
-  glm::vec2 jitter{0.0f};       // sub-pixel offset of the sample from the pixel centre
-  int width = 1, height = 1;    // image size in pixels
+  float zfar = 0.0f;          // 0 = infinite reversed-Z
+  glm::vec2 jitter{0.0f};     // sub-pixel offset of the sample from the pixel centre
+  int width = 1, height = 1;  // image size in pixels
 
   // World-space ray through the sample of pixel (x, y), pixels counted from the LOWER-left
   // as GL's gl_FragCoord does; the sample sits at (x + 0.5, y + 0.5) + jitter.

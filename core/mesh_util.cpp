@@ -10,14 +10,16 @@ namespace {
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
-bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(const glm::vec2& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
 template <typename V>
 void checkFinite(const std::vector<V>& values, const char* attribute, const std::string& where) {
   for (size_t i = 0; i < values.size(); ++i)
     if (!finite(values[i]))
-      throw InputError(where, std::string("non-finite ") + attribute + " at vertex " +
-                                  std::to_string(i));
+      throw InputError(where,
+                       std::string("non-finite ") + attribute + " at vertex " + std::to_string(i));
 }
 
 template <typename V>
@@ -49,13 +51,13 @@ void validateMesh(const Mesh& mesh, const std::string& file) {
   checkFinite(mesh.uv0, "TEXCOORD_0", where);
   checkFinite(mesh.uv1, "TEXCOORD_1", where);
   if (mesh.indices.size() % 3 != 0)
-    throw InputError(where, "index count " + std::to_string(mesh.indices.size()) +
-                                " is not a multiple of 3");
+    throw InputError(
+        where, "index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   for (size_t i = 0; i < mesh.indices.size(); ++i)
     if (mesh.indices[i] >= n)
       throw InputError(where, "index " + std::to_string(mesh.indices[i]) + " at position " +
-                                  std::to_string(i) + " is out of range (" +
-                                  std::to_string(n) + " vertices)");
+                                  std::to_string(i) + " is out of range (" + std::to_string(n) +
+                                  " vertices)");
   if (mesh.triangleCount() == 0) throw InputError(where, "has no triangles");
   if (degenerateTriangleCount(mesh) == mesh.triangleCount())
     throw InputError(where, "every triangle has zero area");

@@ -82,10 +82,10 @@ struct Mesh {
 };
 
 struct Instance {
-  int mesh = 0;                      // index into Scene::meshes
-  glm::mat4 transform{1.0f};         // object to world
+  int mesh = 0;                       // index into Scene::meshes
+  glm::mat4 transform{1.0f};          // object to world
   glm::mat4 previousTransform{1.0f};  // last frame's, for motion vectors
-  std::string node;                  // glTF node name, for messages
+  std::string node;                   // glTF node name, for messages
 };
 
 // KHR_lights_punctual. Intensity units as the extension: candela for point and spot,
@@ -97,8 +97,8 @@ struct Light {
   float intensity = 1.0f;
   float range = 0.0f;  // 0 = infinite
   float innerConeAngle = 0.0f;
-  float outerConeAngle = 0.78539816f;  // pi / 4, the extension's default
-  glm::vec3 position{0.0f};            // world
+  float outerConeAngle = 0.78539816f;      // pi / 4, the extension's default
+  glm::vec3 position{0.0f};                // world
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world, the direction light travels
 };
 
@@ -107,10 +107,10 @@ struct Camera {
   std::string name;
   glm::vec3 position{0.0f};
   glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};
-  float yfov = 1.0f;     // radians
-  float aspect = 0.0f;   // 0 = use the image's
+  float yfov = 1.0f;    // radians
+  float aspect = 0.0f;  // 0 = use the image's
   float znear = 0.05f;
-  float zfar = 0.0f;     // 0 = infinite
+  float zfar = 0.0f;  // 0 = infinite
 };
 
 // Equirectangular environment (latitude-linear, v = 1 at the top row), or a procedural
@@ -144,7 +144,7 @@ struct Bounds {
 };
 
 struct Scene {
-  std::string name;    // built-in name or file path
+  std::string name;  // built-in name or file path
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<Material> materials;

@@ -6,7 +6,9 @@ WorldTriangle worldTriangle(const Scene& scene, uint32_t instance, uint32_t tria
   const Instance& inst = scene.instances[instance];
   const Mesh& mesh = scene.meshes[inst.mesh];
   const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
-  auto world = [&](uint32_t i) { return glm::vec3(inst.transform * glm::vec4(mesh.positions[i], 1.0f)); };
+  auto world = [&](uint32_t i) {
+    return glm::vec3(inst.transform * glm::vec4(mesh.positions[i], 1.0f));
+  };
   return {world(idx[0]), world(idx[1]), world(idx[2])};
 }
 

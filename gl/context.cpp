@@ -14,18 +14,24 @@ Backend parseBackend(const std::string& name) {
 
 std::string backendName(Backend backend) {
   switch (backend) {
-    case Backend::OSMesa: return "osmesa";
-    case Backend::EGL: return "egl";
-    case Backend::GLFW: return "glfw";
+    case Backend::OSMesa:
+      return "osmesa";
+    case Backend::EGL:
+      return "egl";
+    case Backend::GLFW:
+      return "glfw";
   }
   return "?";
 }
 
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   switch (options.backend) {
-    case Backend::OSMesa: return createOSMesaContext(options);
-    case Backend::EGL: return createEGLContext(options);
-    case Backend::GLFW: return createGLFWContext(options);
+    case Backend::OSMesa:
+      return createOSMesaContext(options);
+    case Backend::EGL:
+      return createEGLContext(options);
+    case Backend::GLFW:
+      return createGLFWContext(options);
   }
   throw ContextError("unknown backend");
 }

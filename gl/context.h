@@ -22,9 +22,9 @@ class ContextError : public std::runtime_error {
 
 struct ContextOptions {
   Backend backend = Backend::OSMesa;
-  int windowWidth = 1280;   // glfw only
-  int windowHeight = 720;   // glfw only
-  bool visible = false;     // glfw only
+  int windowWidth = 1280;  // glfw only
+  int windowHeight = 720;  // glfw only
+  bool visible = false;    // glfw only
   std::string title = "photovr";
 };
 

@@ -11,7 +11,9 @@
 namespace photovr::gl {
 namespace {
 
-void* eglProc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+void* eglProc(const char* name) {
+  return reinterpret_cast<void*>(eglGetProcAddress(name));
+}
 
 std::string eglErrorText() {
   char buf[16];
@@ -59,19 +61,27 @@ class EGLContextImpl final : public Context {
     std::string platform;
     display_ = openHeadlessDisplay(platform);
     if (display_ == EGL_NO_DISPLAY)
-      throw ContextError("egl: no headless EGL display (neither surfaceless nor device "
-                         "platform initialised, error " + eglErrorText() +
-                         "); try --backend osmesa");
+      throw ContextError(
+          "egl: no headless EGL display (neither surfaceless nor device "
+          "platform initialised, error " +
+          eglErrorText() + "); try --backend osmesa");
     if (!eglBindAPI(EGL_OPENGL_API))
-      throw ContextError("egl: the " + platform + " display offers no desktop OpenGL; try "
+      throw ContextError("egl: the " + platform +
+                         " display offers no desktop OpenGL; try "
                          "--backend osmesa");
-    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                 4,
+                                 EGL_CONTEXT_MINOR_VERSION,
+                                 5,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_NONE};
     context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctxAttribs);
     if (context_ == EGL_NO_CONTEXT)
-      throw ContextError("egl: the " + platform + " display refused an OpenGL 4.5 core context "
-                         "(error " + eglErrorText() + "); try --backend osmesa");
+      throw ContextError("egl: the " + platform +
+                         " display refused an OpenGL 4.5 core context "
+                         "(error " +
+                         eglErrorText() + "); try --backend osmesa");
     bindCurrent();
     initialize(eglProc);
   }
@@ -84,8 +94,8 @@ class EGLContextImpl final : public Context {
   Backend backend() const override { return Backend::EGL; }
   void bindCurrent() override {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw ContextError("egl: eglMakeCurrent without a surface failed (error " +
-                         eglErrorText() + "); try --backend osmesa");
+      throw ContextError("egl: eglMakeCurrent without a surface failed (error " + eglErrorText() +
+                         "); try --backend osmesa");
   }
 
  private:

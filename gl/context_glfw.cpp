@@ -10,7 +10,9 @@
 namespace photovr::gl {
 namespace {
 
-void* glfwProc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+void* glfwProc(const char* name) {
+  return reinterpret_cast<void*>(glfwGetProcAddress(name));
+}
 
 std::string glfwErrorText() {
   const char* text = nullptr;
@@ -22,8 +24,9 @@ class GLFWContextImpl final : public Context {
  public:
   explicit GLFWContextImpl(const ContextOptions& o) {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-      throw ContextError("glfw: no display (DISPLAY is not set); run under a desktop or "
-                         "xvfb-run, or use --backend egl / osmesa for headless rendering");
+      throw ContextError(
+          "glfw: no display (DISPLAY is not set); run under a desktop or "
+          "xvfb-run, or use --backend egl / osmesa for headless rendering");
     if (!glfwInit())
       throw ContextError("glfw: initialisation failed (" + glfwErrorText() +
                          "); try --backend egl");

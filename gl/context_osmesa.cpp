@@ -9,14 +9,24 @@
 namespace photovr::gl {
 namespace {
 
-void* osmesaProc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+void* osmesaProc(const char* name) {
+  return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+}
 
 class OSMesaContextImpl final : public Context {
  public:
   OSMesaContextImpl() {
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_)
       throw ContextError(

@@ -9,7 +9,9 @@ DrawStats& drawStats() {
   return stats;
 }
 
-void resetDrawStats() { drawStats() = DrawStats{}; }
+void resetDrawStats() {
+  drawStats() = DrawStats{};
+}
 
 void drawIndexedTrianglesInstanced(uint32_t indexCount, uint32_t instanceCount) {
   DrawStats& s = drawStats();

@@ -82,14 +82,17 @@ void GBufferPass::createTargets() {
   const bool layered = routing_ == EyeRouting::Layered;
   for (int t = 0; t < kTargets; ++t) {
     layers_[t] = makeTexture(GL_TEXTURE_2D_ARRAY, kFormats[t].internal, width_, height_, 2);
-    if (!layered) wide_[t] = makeTexture(GL_TEXTURE_2D, kFormats[t].internal, 2 * width_, height_, 1);
+    if (!layered)
+      wide_[t] = makeTexture(GL_TEXTURE_2D, kFormats[t].internal, 2 * width_, height_, 1);
   }
   depthLayers_ = makeTexture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, width_, height_, 2);
-  if (!layered) wideDepth_ = makeTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 2 * width_, height_, 1);
+  if (!layered)
+    wideDepth_ = makeTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, 2 * width_, height_, 1);
   api::CreateFramebuffers(1, &fbo_);
   GLenum buffers[kTargets];
   for (int t = 0; t < kTargets; ++t) {
-    api::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + t, layered ? layers_[t] : wide_[t], 0);
+    api::NamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + t, layered ? layers_[t] : wide_[t],
+                                 0);
     buffers[t] = GL_COLOR_ATTACHMENT0 + t;
   }
   api::NamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, layered ? depthLayers_ : wideDepth_, 0);

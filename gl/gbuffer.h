@@ -69,11 +69,11 @@ class GBufferPass {
   int width_, height_;
   EyeRouting routing_;
   Program program_;
-  unsigned frameBuffer_ = 0;     // UBO with FrameUniforms
+  unsigned frameBuffer_ = 0;  // UBO with FrameUniforms
   unsigned fbo_ = 0;
   unsigned layers_[int(GBufferTarget::Count)] = {};  // 2-layer arrays (what consumers read)
   unsigned depthLayers_ = 0;
-  unsigned wide_[int(GBufferTarget::Count)] = {};    // side-by-side targets (fallback only)
+  unsigned wide_[int(GBufferTarget::Count)] = {};  // side-by-side targets (fallback only)
   unsigned wideDepth_ = 0;
 };
 

@@ -60,12 +60,24 @@ Program::Program(const std::vector<Stage>& stages, const std::vector<std::string
   }
 }
 
-Program::~Program() { api::DeleteProgram(id_); }
+Program::~Program() {
+  api::DeleteProgram(id_);
+}
 
-void Program::use() const { api::UseProgram(id_); }
-int Program::uniform(const char* name) const { return api::GetUniformLocation(id_, name); }
-void Program::set(const char* name, unsigned v) const { api::ProgramUniform1ui(id_, uniform(name), v); }
-void Program::set(const char* name, int v) const { api::ProgramUniform1i(id_, uniform(name), v); }
-void Program::set(const char* name, float v) const { api::ProgramUniform1f(id_, uniform(name), v); }
+void Program::use() const {
+  api::UseProgram(id_);
+}
+int Program::uniform(const char* name) const {
+  return api::GetUniformLocation(id_, name);
+}
+void Program::set(const char* name, unsigned v) const {
+  api::ProgramUniform1ui(id_, uniform(name), v);
+}
+void Program::set(const char* name, int v) const {
+  api::ProgramUniform1i(id_, uniform(name), v);
+}
+void Program::set(const char* name, float v) const {
+  api::ProgramUniform1f(id_, uniform(name), v);
+}
 
 }  // namespace photovr::gl

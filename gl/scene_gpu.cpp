@@ -19,7 +19,8 @@ GLuint makeBuffer(const std::vector<T>& data) {
   // Zero-sized storage is an error in GL; a 16-byte dummy keeps absent attributes simple.
   const size_t bytes = std::max<size_t>(data.size() * sizeof(T), 16);
   api::NamedBufferStorage(b, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  if (!data.empty()) api::NamedBufferSubData(b, 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
+  if (!data.empty())
+    api::NamedBufferSubData(b, 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
   return b;
 }
 
@@ -34,9 +35,12 @@ void attribute(GLuint vao, GLuint location, GLuint buffer, int components, size_
 
 GLint wrapMode(Texture::Wrap w) {
   switch (w) {
-    case Texture::Wrap::Clamp: return GL_CLAMP_TO_EDGE;
-    case Texture::Wrap::Mirror: return GL_MIRRORED_REPEAT;
-    default: return GL_REPEAT;
+    case Texture::Wrap::Clamp:
+      return GL_CLAMP_TO_EDGE;
+    case Texture::Wrap::Mirror:
+      return GL_MIRRORED_REPEAT;
+    default:
+      return GL_REPEAT;
   }
 }
 
@@ -55,7 +59,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
   for (const Mesh& m : scene.meshes) uploadMesh(m);
   // Group instances by mesh: GPU slot order is mesh-major, stable within a mesh.
   std::vector<std::vector<uint32_t>> byMesh(scene.meshes.size());
-  for (uint32_t i = 0; i < scene.instances.size(); ++i) byMesh[scene.instances[i].mesh].push_back(i);
+  for (uint32_t i = 0; i < scene.instances.size(); ++i)
+    byMesh[scene.instances[i].mesh].push_back(i);
   for (size_t m = 0; m < byMesh.size(); ++m) {
     meshes_[m].firstInstance = uint32_t(gpuOrder_.size());
     meshes_[m].instanceCount = uint32_t(byMesh[m].size());
@@ -63,7 +68,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
     for (uint32_t i : byMesh[m])
       meshes_[m].anyMirrored |= glm::determinant(glm::mat3(scene.instances[i].transform)) < 0.0f;
   }
-  instanceBuffer_ = makeBuffer(std::vector<shared::GpuInstance>(std::max<size_t>(gpuOrder_.size(), 1)));
+  instanceBuffer_ =
+      makeBuffer(std::vector<shared::GpuInstance>(std::max<size_t>(gpuOrder_.size(), 1)));
   updateInstances(scene);
   uploadMaterials(scene);
 }
@@ -101,9 +107,11 @@ void SceneGpu::uploadMesh(const Mesh& mesh) {
 void SceneGpu::updateInstances(const Scene& scene) {
   std::vector<shared::GpuInstance> data;
   data.reserve(gpuOrder_.size());
-  for (uint32_t sceneIndex : gpuOrder_) data.push_back(gpuInstance(scene.instances[sceneIndex], sceneIndex));
+  for (uint32_t sceneIndex : gpuOrder_)
+    data.push_back(gpuInstance(scene.instances[sceneIndex], sceneIndex));
   if (!data.empty())
-    api::NamedBufferSubData(instanceBuffer_, 0, GLsizeiptr(data.size() * sizeof(data[0])), data.data());
+    api::NamedBufferSubData(instanceBuffer_, 0, GLsizeiptr(data.size() * sizeof(data[0])),
+                            data.data());
 }
 
 unsigned SceneGpu::textureFor(const Scene& scene, const TextureRef& ref, bool srgb) {
@@ -136,8 +144,8 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
     shared::GpuMaterial g{};
     g.baseColorFactor = mat.baseColorFactor;
     g.emissive = glm::vec4(mat.emission(), mat.alphaCutoff);
-    g.params = glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normalScale,
-                         mat.occlusionStrength);
+    g.params =
+        glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normalScale, mat.occlusionStrength);
     g.flags = glm::uvec4(mat.alphaMode == AlphaMode::Mask ? ALPHA_MASK : ALPHA_OPAQUE,
                          mat.doubleSided ? 1u : 0u, 0u, 0u);
     const TextureRef* refs[SLOT_COUNT] = {&mat.baseColorTexture, &mat.metallicRoughnessTexture,

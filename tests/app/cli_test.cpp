@@ -85,7 +85,8 @@ TEST(Cli, ExportedSceneLoadsBackWithTheSameCounts) {
 
 TEST(Cli, RenderWritesEveryImageForBothEyes) {
   const std::string dir = tempDir("render");
-  const auto r = runPhotovr("render --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
+  const auto r =
+      runPhotovr("render --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* eye : {"left", "right"})
     for (const char* file : {"depth.exr", "normal.png", "albedo.png", "ids.png"})
@@ -105,8 +106,10 @@ TEST(Cli, RenderWritesEveryImageForBothEyes) {
 
 TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
   const std::string dir = tempDir("mono");
-  const auto r = runPhotovr("render --scene spheres --eyes mono --fovy 40 --backend osmesa "
-                            "--width 80 --height 40 --out " + dir);
+  const auto r = runPhotovr(
+      "render --scene spheres --eyes mono --fovy 40 --backend osmesa "
+      "--width 80 --height 40 --out " +
+      dir);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir + "/mono/albedo.png"));
   EXPECT_FALSE(fs::exists(dir + "/left"));
@@ -114,17 +117,19 @@ TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
 }
 
 TEST(Cli, GlfwWithoutADisplaySaysWhatToTryInstead) {
-  const auto r = runPhotovr("render --backend glfw --width 8 --height 8 --scene cornell "
-                            "--out /tmp/photovr-nodisplay </dev/null; unset DISPLAY; " +
-                            std::string(PHOTOVR_BINARY) + " render --backend glfw");
+  const auto r = runPhotovr(
+      "render --backend glfw --width 8 --height 8 --scene cornell "
+      "--out /tmp/photovr-nodisplay </dev/null; unset DISPLAY; " +
+      std::string(PHOTOVR_BINARY) + " render --backend glfw");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("glfw: no display"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--backend egl"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UnwritableOutputIsAnErrorNotACrash) {
-  const auto r = runPhotovr("render --scene cornell --backend osmesa --width 8 --height 8 --out "
-                            "/proc/photovr-cannot-write");
+  const auto r = runPhotovr(
+      "render --scene cornell --backend osmesa --width 8 --height 8 --out "
+      "/proc/photovr-cannot-write");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("/proc/photovr-cannot-write"), std::string::npos) << r.output;
 }

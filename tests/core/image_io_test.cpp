@@ -34,7 +34,8 @@ TEST(ImageIo, ExrRoundTripIsExact) {
 TEST(ImageIo, FailedWriteLeavesNothingBehind) {
   const std::string dir = tempPath("nowrite");
   std::filesystem::create_directories(dir);
-  std::filesystem::permissions(dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  std::filesystem::permissions(
+      dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   Image8 img(1, 1, 3);
   bool threw = false;
   try {

@@ -27,7 +27,9 @@ std::string errorOf(const Mesh& m) {
   return "";
 }
 
-TEST(ValidateMesh, AcceptsAValidTriangle) { EXPECT_EQ(errorOf(unitTriangle()), ""); }
+TEST(ValidateMesh, AcceptsAValidTriangle) {
+  EXPECT_EQ(errorOf(unitTriangle()), "");
+}
 
 TEST(ValidateMesh, RejectsNaNPositionNamingFileMeshAndVertex) {
   Mesh m = unitTriangle();

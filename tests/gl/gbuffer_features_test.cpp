@@ -23,12 +23,13 @@ struct Frame {
   gl::GBufferImage eye[2];
 };
 
-Frame render(const Scene& scene, const EyeCamera& cam, gl::EyeRouting routing = gl::EyeRouting::Layered,
+Frame render(const Scene& scene, const EyeCamera& cam,
+             gl::EyeRouting routing = gl::EyeRouting::Layered,
              const std::array<glm::mat4, 2>* previous = nullptr) {
   gl::Context& ctx = osmesaContext();
   gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(cam.width, cam.height, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"),
-                       routing);
+  gl::GBufferPass pass(cam.width, cam.height,
+                       ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), routing);
   const glm::mat4 vp = cam.unjitteredProjection() * cam.view();
   pass.render(gpu, {cam, cam}, previous ? *previous : std::array<glm::mat4, 2>{vp, vp});
   return {{pass.read(0), pass.read(1)}};
@@ -60,7 +61,8 @@ const glm::mat4 kInFront = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -1));
 const glm::mat4 kFacingAway = glm::rotate(kInFront, float(M_PI), glm::vec3(0, 1, 0));
 
 TEST(GBufferFeatures, SingleSidedBackFacesAreCulled) {
-  const Frame f = render(singleRectangle(plainMaterial(glm::vec3(1)), kFacingAway), monoCamera(16, 16));
+  const Frame f =
+      render(singleRectangle(plainMaterial(glm::vec3(1)), kFacingAway), monoCamera(16, 16));
   EXPECT_EQ(covered(f.eye[0]), 0u);
 }
 
@@ -76,7 +78,8 @@ TEST(GBufferFeatures, DoubleSidedBackFacesShowWithTheNormalFlipped) {
 TEST(GBufferFeatures, MirroredInstanceOfASingleSidedMeshStaysVisibleFromItsFront) {
   // Scaling x by -1 reverses the winding but not which side the normal faces.
   const glm::mat4 mirrored = glm::scale(kInFront, glm::vec3(-1, 1, 1));
-  const Frame f = render(singleRectangle(plainMaterial(glm::vec3(1)), mirrored), monoCamera(16, 16));
+  const Frame f =
+      render(singleRectangle(plainMaterial(glm::vec3(1)), mirrored), monoCamera(16, 16));
   EXPECT_EQ(covered(f.eye[0]), 16u * 16u);
 }
 
@@ -166,7 +169,8 @@ TEST(GBufferFeatures, SideBySideFallbackMatchesLayeredRouting) {
   for (int e = 0; e < 2; ++e) {
     const gl::GBufferImage a = layered.read(e), b = sbs.read(e);
     size_t differ = 0;
-    for (size_t i = 0; i < a.visibility.size(); ++i) differ += a.visibility[i].x != b.visibility[i].x;
+    for (size_t i = 0; i < a.visibility.size(); ++i)
+      differ += a.visibility[i].x != b.visibility[i].x;
     // Squeezing x by 0.5 changes edge rounding only: at most one pixel per edge row.
     EXPECT_LE(differ, 2u * 30u) << "eye " << e;
     EXPECT_GT(covered(a), 100u);

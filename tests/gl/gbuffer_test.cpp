@@ -107,11 +107,12 @@ TEST(GBuffer, VisibilityRecordRebuildsTheAnalyticHitPoint) {
 }
 
 // The sub-pixel column where the world-space hit points cross x = 0 on row y.
-double crossingColumn(const Scene& scene, const gl::GBufferImage& img, const EyeCamera& cam, int y) {
+double crossingColumn(const Scene& scene, const gl::GBufferImage& img, const EyeCamera& cam,
+                      int y) {
   auto worldX = [&](int x) {
     const glm::uvec4 v = img.visibility[img.index(x, y)];
-    return double(rebuildHitPoint(scene, {v.x, v.y, glm::uintBitsToFloat(v.z),
-                                          glm::uintBitsToFloat(v.w)}).x);
+    return double(
+        rebuildHitPoint(scene, {v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)}).x);
   };
   for (int x = 0; x + 1 < img.width; ++x) {
     const double a = worldX(x), b = worldX(x + 1);
@@ -131,7 +132,8 @@ TEST(GBuffer, StereoDisparityMatchesIpdAndFocalGeometry) {
   auto column = [&](const EyeCamera& c, float eyeX) {
     return (-eyeX / distance + c.fov.left) / (c.fov.left + c.fov.right) * w;
   };
-  const double expectedL = column(eyes[0], -kDefaultIpd / 2), expectedR = column(eyes[1], kDefaultIpd / 2);
+  const double expectedL = column(eyes[0], -kDefaultIpd / 2),
+               expectedR = column(eyes[1], kDefaultIpd / 2);
   const double measuredL = crossingColumn(scene, r.eye[0], eyes[0], h / 2);
   const double measuredR = crossingColumn(scene, r.eye[1], eyes[1], h / 2);
   // The plane is flat, so world x is linear in the column: the interpolated crossing is
@@ -150,8 +152,8 @@ TEST(GBuffer, NormalsBaseColourAndMaterialComeBackAsWritten) {
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(b[c], color[c], kHalfRel * color[c]);
       ASSERT_NEAR(n.z, 1.0f, kHalfRel);
       ASSERT_NEAR(n.x, 0.0f, kHalfRel);
-      ASSERT_NEAR(m.x, 0.25f, kHalfRel * 0.25f);  // metallic
-      ASSERT_NEAR(m.y, 0.75f, kHalfRel * 0.75f);  // roughness
+      ASSERT_NEAR(m.x, 0.25f, kHalfRel * 0.25f);       // metallic
+      ASSERT_NEAR(m.y, 0.75f, kHalfRel * 0.75f);       // roughness
       ASSERT_EQ(r.eye[e].motion[i], glm::vec2(0.0f));  // static scene, static camera
     }
 }
@@ -166,7 +168,8 @@ TEST(GBuffer, OneDrawCallPerMeshCoversBothEyesAndAllInstances) {
     inst.transform = glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f + 0.5f * i, 0, -2));
     scene.instances.push_back(inst);
   }
-  scene.instances.push_back({2, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.4f, -2)), glm::mat4(1.0f), ""});
+  scene.instances.push_back(
+      {2, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.4f, -2)), glm::mat4(1.0f), ""});
   const Rendered r = renderGBuffer(scene, stereoEyes(32, 32));
   EXPECT_EQ(r.stats.drawCalls, 3u);       // three meshes, not six
   EXPECT_EQ(r.stats.instances, 2u * 5u);  // every scene instance once per eye

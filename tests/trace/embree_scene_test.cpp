@@ -1,0 +1,113 @@
+#include "trace/embree_scene.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/trace/trace_test_util.h"
+#include "trace/surface.h"
+
+namespace photovr {
+namespace {
+
+using testing::addSquare;
+using testing::diffuseMaterial;
+
+constexpr float kInf = 1e30f;
+
+Scene oneSquare(const glm::mat4& t, bool doubleSided = false) {
+  Scene s;
+  s.materials.push_back(diffuseMaterial(glm::vec3(0.5f)));
+  s.materials[0].doubleSided = doubleSided;
+  addSquare(s, 1.0f, 0, t);
+  return s;
+}
+
+TEST(EmbreeScene, HitDistanceAndBarycentricsOfAKnownSquare) {
+  const Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  const EmbreeScene e(s);
+  const TraceHit h = e.intersect({0.5f, -0.5f, 0}, {0, 0, -1}, 0, kInf);
+  ASSERT_TRUE(h.hit);
+  EXPECT_FLOAT_EQ(h.t, 3.0f);
+  EXPECT_EQ(h.instance, 0u);
+  const SurfaceHit sh = surfaceAt(s, h.instance, h.triangle, h.b1, h.b2, {0, 0, -1});
+  // Rebuilt from barycentrics: float rounding of coordinates of size ~3.
+  EXPECT_NEAR(glm::distance(sh.position, glm::vec3(0.5f, -0.5f, -3.0f)), 0.0f, 1e-6f);
+  EXPECT_FALSE(e.intersect({0.5f, -0.5f, 0}, {0, 0, -1}, 0, 2.9f).hit);  // tfar respected
+}
+
+TEST(EmbreeScene, SingleSidedBackFacesAreInvisibleLikeInTheGBuffer) {
+  const Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  const EmbreeScene e(s);
+  EXPECT_TRUE(e.stats().backFaceFilter);
+  EXPECT_FALSE(e.intersect({0, 0, -6}, {0, 0, 1}, 0, kInf).hit);  // from behind
+  EXPECT_FALSE(e.occluded({0, 0, -6}, {0, 0, 1}, 0, kInf));
+  const Scene two = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}), true);
+  EXPECT_TRUE(EmbreeScene(two).intersect({0, 0, -6}, {0, 0, 1}, 0, kInf).hit);
+}
+
+TEST(EmbreeScene, MirroredInstanceKeepsItsFrontFace) {
+  // Scale x by -1: winding flips in world space, but the face still faces +Z in its own
+  // space, as the G-buffer sees it (GBufferFeatures.MirroredInstance...).
+  const glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), {0, 0, -3}), {-1, 1, 1});
+  const Scene s = oneSquare(t);  // EmbreeScene keeps a reference: the scene must outlive it
+  const EmbreeScene e(s);
+  EXPECT_TRUE(e.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf).hit);
+  EXPECT_FALSE(e.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf).hit);
+}
+
+TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
+  Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  Texture t;
+  t.name = "half";
+  t.width = 2;
+  t.height = 1;
+  t.nearest = true;
+  t.rgba = {255, 255, 255, 255, 255, 255, 255, 0};  // u < 0.5 opaque, u >= 0.5 clear
+  s.textures.push_back(t);
+  s.materials[0].alphaMode = AlphaMode::Mask;
+  s.materials[0].baseColorTexture.texture = 0;
+  const EmbreeScene e(s);
+  EXPECT_TRUE(e.stats().alphaFilter);
+  EXPECT_TRUE(e.intersect({-0.5f, 0, 0}, {0, 0, -1}, 0, kInf).hit);  // u = 0.25
+  EXPECT_FALSE(e.intersect({0.5f, 0, 0}, {0, 0, -1}, 0, kInf).hit);  // u = 0.75
+  EXPECT_FALSE(e.occluded({0.5f, 0, 0}, {0, 0, -1}, 0, kInf));
+}
+
+TEST(EmbreeScene, MovedInstancesAreFoundAfterUpdate) {
+  Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  EmbreeScene e(s);
+  s.instances[0].transform = glm::translate(glm::mat4(1.0f), {10, 0, -3});
+  e.updateInstanceTransforms();
+  EXPECT_FALSE(e.intersect({0, 0, 0}, {0, 0, -1}, 0, kInf).hit);
+  EXPECT_TRUE(e.intersect({10, 0, 0}, {0, 0, -1}, 0, kInf).hit);
+}
+
+TEST(SurfaceOffset, SpawnedRaysDoNotHitTheirOwnSurfaceFarFromTheOrigin) {
+  // 1e5 m from the origin the float spacing is ~8 mm: a naive epsilon fails there.
+  for (float far : {0.0f, 1e3f, 1e5f}) {
+    const glm::mat4 t = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(far, far, -far - 3)),
+                                    0.7f, glm::normalize(glm::vec3(1, 1, 0)));
+    const Scene s = oneSquare(glm::scale(t, glm::vec3(50.0f)));
+    const EmbreeScene e(s);
+    const glm::vec3 target = glm::vec3(t * glm::vec4(0.1f, 0.2f, 0, 1));
+    const glm::vec3 origin = target + glm::vec3(0, 0, 3);
+    const glm::vec3 dir = glm::normalize(target - origin);
+    const TraceHit h = e.intersect(origin, dir, 0, kInf);
+    ASSERT_TRUE(h.hit) << far;
+    const SurfaceHit sh = surfaceAt(s, h.instance, h.triangle, h.b1, h.b2, dir);
+    int selfHits = 0;
+    for (int k = 0; k < 64; ++k) {  // directions over the hemisphere, down to grazing
+      const float phi = 0.3f * k, cosT = 0.02f + 0.96f * (k % 8) / 7.0f;
+      const float sinT = std::sqrt(1 - cosT * cosT);
+      glm::vec3 a = std::abs(sh.geometricNormal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+      const glm::vec3 b1 = glm::normalize(glm::cross(sh.geometricNormal, a));
+      const glm::vec3 b2 = glm::cross(sh.geometricNormal, b1);
+      const glm::vec3 out =
+          sinT * std::cos(phi) * b1 + sinT * std::sin(phi) * b2 + cosT * sh.geometricNormal;
+      selfHits += e.intersect(offsetRayOrigin(sh, out), out, 0, kInf).hit;
+    }
+    EXPECT_EQ(selfHits, 0) << "at distance " << far;
+  }
+}
+
+}  // namespace
+}  // namespace photovr

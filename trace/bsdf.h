@@ -1,0 +1,123 @@
+// The material model of the thesis (Moschos 2019, sec. 2.1.2; ../shared/reference/
+// thesis.md): a GGX microfacet specular lobe plus a Lambert diffuse lobe over the glTF
+// metallic-roughness parameters, made robust for a path tracer.
+//
+// Every function works in the local shading frame, z = the shading normal, with unit
+// directions pointing away from the surface (wo towards the viewer, wi towards the light).
+// It is a BRDF: reflection only, zero unless wo.z > 0 and wi.z > 0. The caller flips or
+// bends back-facing shading normals before calling. Nothing here returns NaN or Inf, for
+// any input (tests/trace/bsdf_test.cpp, "Finite*").
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "trace/sampling.h"  // isFinite, luminance
+
+namespace photovr {
+
+// Perceptual roughness is clamped below at 0.045, alpha = roughness^2 at 0.045^2 =
+// 2.025e-3: Filament's floor for fp32 targets (MIN_PERCEPTUAL_ROUGHNESS in
+// common_material.fs); the raster shaders should use the same so both paths agree on the
+// sharpest highlight. Below it the GGX peak D(n) = 1/(pi alpha^2) passes 8e4 and the
+// lobe (~alpha rad wide) nears the ~1e-7 rad error of a float direction reflected about a
+// half-vector, so pdf(sample) drifts from the density the sampler followed and f cos / pdf
+// of a sampled highlight stops being bounded.
+//
+// Roughness 0 is therefore a near-mirror GGX lobe of alpha = kMinAlpha, not a delta lobe:
+// one code path, and every BSDF pdf stays finite, so MIS with light and environment
+// sampling stays valid without special cases for "specular" bounces. The cost: reflected
+// directions spread ~2 alpha rad (median ~0.25 degree, a few DK2 pixels) around the
+// mirror direction, with GGX's long tail (0.2 % beyond 5 degrees).
+inline constexpr float kMinPerceptualRoughness = 0.045f;
+inline constexpr float kMinAlpha = kMinPerceptualRoughness * kMinPerceptualRoughness;
+
+// Dielectric specular reflectance at normal incidence, glTF 2.0 Appendix B (IOR 1.5).
+inline constexpr float kDielectricF0 = 0.04f;
+
+struct BsdfParams {
+  glm::vec3 baseColor{1.0f};  // linear, in [0,1]
+  float metallic = 0.0f;      // in [0,1]
+  float roughness = 1.0f;     // glTF perceptual roughness in [0,1]
+};
+
+// GGX alpha from glTF perceptual roughness (glTF 2.0 Appendix B: alpha = roughness^2),
+// with the kMinAlpha floor above. Out-of-range and NaN roughness clamp into [0,1].
+float roughnessToAlpha(float roughness);
+
+// --- Microfacet terms (thesis sec. 2.1.2), all directions in the local frame. ----------
+
+// GGX / Trowbridge-Reitz NDF, thesis D(h) = a^2 / (pi ((n.h)^2 (a^2 - 1) + 1)^2), written
+// with h.x^2 + h.y^2 in place of 1 - (n.h)^2 (the same for unit h): near h = n the
+// subtraction would cancel to zero in float exactly where a small-alpha lobe lives.
+// Zero for h.z <= 0.
+float ggxD(const glm::vec3& h, float alpha);
+
+// Smith's Lambda for GGX (Heitz 2014, "Understanding the Masking-Shadowing Function in
+// Microfacet-Based BRDFs", JCGT 3(2), eq. 72): (-1 + sqrt(1 + alpha^2 tan^2 theta)) / 2.
+float ggxLambda(const glm::vec3& w, float alpha);
+
+// The thesis's separable Smith G1(v) = 2 (n.v) / ((n.v) + sqrt(a^2 + (1 - a^2)(n.v)^2)),
+// which equals 1 / (1 + Lambda). Zero for w.z <= 0.
+float ggxG1(const glm::vec3& w, float alpha);
+
+// G1(w) / (n.w) without the division: 2 / ((n.w) + sqrt(a^2 + (1 - a^2)(n.w)^2)). Bounded
+// by 2/alpha as n.w -> 0, where G1 and n.w both vanish; the BRDF and pdfs use it so no
+// grazing cosine is ever a divisor.
+float ggxG1OverCos(const glm::vec3& w, float alpha);
+
+// Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", CGF 13(3), 1994,
+// eq. 15: F = F0 + (1 - F0)(1 - cos)^5, cos clamped to [0,1].
+glm::vec3 fresnelSchlick(const glm::vec3& f0, float cosTheta);
+
+// Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), 2018, listing 1
+// (isotropic): a microfacet normal h distributed as D_wo(h) below. Requires wo.z > 0.
+glm::vec3 sampleGgxVndf(const glm::vec3& wo, float alpha, glm::vec2 u);
+
+// The distribution of visible normals (Heitz 2018, eq. 1):
+// D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z, a density over h in solid angle.
+float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha);
+
+// --- The BRDF. -------------------------------------------------------------------------
+
+// Evaluation convention: f alone, without the cosine; the caller multiplies by |wi.z|
+// (as pbrt's BxDF::f). Reciprocal: evalBsdf(p, a, b) == evalBsdf(p, b, a).
+//
+// f = D F G / (4 (n.l)(n.v))                                    thesis specular lobe
+//   + (1 - F(n.v)) (1 - F(n.l)) (1 - metallic) baseColor / pi   diffuse lobe
+// with F0 = mix(0.04, baseColor, metallic), the specular F = Schlick at v.h (= l.h) and
+// G = G1(l) G1(v). The diffuse lobe's "(1 - F)" is the light the interface transmits on
+// the way in and on the way out, each by Schlick at the macro-surface angle: reciprocal
+// by symmetry and, unlike (1 - F(v.h)) (glTF 2.0 Appendix B's fresnel_mix), it keeps
+// the directional albedo <= 1 at grazing angles, where F(v.h) -> 1 only on the narrow
+// mirror lobe while 1 - F(v.h) stays ~0.96 over the rest of the hemisphere (albedo up to
+// ~1.7 for a smooth white dielectric at 89 degrees; tests/trace/bsdf_test.cpp,
+// "EnergyDirectionalAlbedoAtMostOne").
+glm::vec3 evalBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
+
+// Probability that sampleBsdf picks the specular lobe: its weight estimate lum(F(n.wo))
+// against the diffuse lobe's lum((1 - F(n.wo))(1 - metallic) baseColor). For a white
+// dielectric this is the thesis's "probability by the Fresnel term" (Algorithm 5), p =
+// F(n.wo). With the lobe weights roughly the lobes' albedos, f cos / pdf of either lobe
+// stays near the total albedo, so no clamp is needed; a lobe of zero weight (the diffuse
+// lobe of a metal, the specular lobe of nothing) gets probability exactly 0.
+float specularProbability(const BsdfParams& p, const glm::vec3& wo);
+
+// The combined density of sampleBsdf over wi in solid angle, both lobes weighted by their
+// selection probabilities (the pdf MIS needs).
+float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
+
+struct BsdfSample {
+  glm::vec3 wi{0.0f};
+  glm::vec3 f{0.0f};       // evalBsdf(wo, wi)
+  float pdf = 0.0f;        // pdfBsdf(wo, wi): the combined pdf, 0 = no sample
+  glm::vec3 weight{0.0f};  // f * wi.z / pdf, the throughput factor
+  bool specularLobe = false;
+  bool valid() const { return pdf > 0.0f; }
+};
+
+// Picks a lobe with uLobe against specularProbability(), then samples it with u: GGX
+// visible normals reflected about h, or the cosine-weighted hemisphere. Returns an
+// invalid sample (pdf 0, weight 0) when wo.z <= 0 or the sampled wi is below the surface.
+BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u, float uLobe);
+
+}  // namespace photovr

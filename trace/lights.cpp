@@ -1,0 +1,168 @@
+#include "trace/lights.h"
+
+#include <cmath>
+#include <limits>
+
+#include "trace/surface.h"
+
+namespace photovr {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+uint64_t triangleKey(uint32_t instance, uint32_t triangle) {
+  return (uint64_t(instance) << 32) | triangle;
+}
+
+// Flux estimates, only used to choose between lights (any positive weights keep the
+// estimator unbiased; proportional to power keeps its variance low).
+float punctualPower(const Light& l) {
+  const float i = luminance(l.color) * l.intensity;
+  return l.type == Light::Type::Directional ? i * kPi : 4.0f * kPi * i;
+}
+
+// glTF KHR_lights_punctual, "Range Property": smooth window to zero at 'range'.
+float rangeWindow(float distance, float range) {
+  if (range <= 0.0f) return 1.0f;
+  const float r = distance / range, r4 = r * r * r * r;
+  const float w = std::clamp(1.0f - r4, 0.0f, 1.0f);
+  return w * w;
+}
+
+// glTF KHR_lights_punctual, "Inner and Outer Cone Angles": the reference smooth falloff.
+float spotFalloff(const Light& l, const glm::vec3& toPoint) {
+  const float cd = glm::dot(glm::normalize(l.direction), toPoint);
+  const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
+  const float scale = 1.0f / std::max(1e-4f, cosInner - cosOuter);
+  const float t = std::clamp((cd - cosOuter) * scale, 0.0f, 1.0f);
+  return t * t;
+}
+
+}  // namespace
+
+LightSet::LightSet(const Scene& scene) : scene_(scene) {
+  std::vector<float> weights;
+  for (const Light& l : scene.lights)
+    if (l.intensity > 0.0f && luminance(l.color) > 0.0f) {
+      punctual_.push_back(&l);
+      weights.push_back(punctualPower(l));
+    }
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    const Mesh& mesh = scene.meshes[inst.mesh];
+    const Material& mat = scene.materials[mesh.material];
+    if (!mat.isEmissive()) continue;
+    for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {
+      const uint32_t* idx = &mesh.indices[3 * size_t(t)];
+      const glm::vec3 p0 = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[0]], 1.0f));
+      const glm::vec3 e1 = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[1]], 1.0f)) - p0;
+      const glm::vec3 e2 = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[2]], 1.0f)) - p0;
+      const float area = 0.5f * glm::length(glm::cross(e1, e2));
+      if (!(area > 0.0f)) continue;
+      triangleIndex_[triangleKey(i, t)] = uint32_t(triangles_.size());
+      triangles_.push_back({i, t, p0, e1, e2, area});
+      weights.push_back(luminance(mat.emission()) * area * kPi * (mat.doubleSided ? 2.0f : 1.0f));
+    }
+  }
+  if (scene.environment.type != Environment::Type::None) {
+    environment_ = EnvironmentSampler(scene.environment);
+    if (!environment_.empty()) {
+      // Flux the environment sends through the scene's bounding disc: pi L_avg * pi R^2,
+      // with L_avg from a fixed 8 x 8 stratified set of directions (deterministic).
+      const Bounds b = scene.worldBounds();
+      const float r = b.empty() ? 1.0f : 0.5f * glm::length(b.extent());
+      float avg = 0.0f;
+      for (int k = 0; k < 64; ++k) {
+        const glm::vec3 d = sampleUniformSphere({(k % 8 + 0.5f) / 8.0f, (k / 8 + 0.5f) / 8.0f});
+        avg += luminance(lookupEnvironment(scene.environment, d)) / 64.0f;
+      }
+      weights.push_back(std::max(avg, 1e-6f) * kPi * kPi * r * r);
+    }
+  }
+  if (!weights.empty()) selection_ = Distribution1D(weights);
+}
+
+LightSample LightSet::samplePunctual(const Light& l, const glm::vec3& point) const {
+  LightSample s;
+  s.isDelta = true;
+  if (l.type == Light::Type::Directional) {
+    s.direction = -glm::normalize(l.direction);
+    s.distance = kInfinity;
+    s.radiance = l.color * l.intensity;  // lux: irradiance normal to the light
+    return s;
+  }
+  const glm::vec3 d = l.position - point;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return s;
+  s.distance = std::sqrt(dist2);
+  s.direction = d / s.distance;
+  float scale = rangeWindow(s.distance, l.range) / dist2;  // candela / d^2 = irradiance
+  if (l.type == Light::Type::Spot) scale *= spotFalloff(l, -s.direction);
+  s.radiance = l.color * l.intensity * scale;
+  return s;
+}
+
+LightSample LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& point,
+                                     glm::vec2 u) const {
+  // Uniform point on the triangle (Pharr, Jakob, Humphreys, pbrt 3rd ed. §13.6.4).
+  const float su = std::sqrt(u.x);
+  const float b1 = su * (1.0f - u.y), b2 = su * u.y;
+  const glm::vec3 p = tri.p0 + b1 * tri.e1 + b2 * tri.e2;
+  LightSample s;
+  s.isArea = true;
+  const glm::vec3 d = p - point;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return s;
+  s.distance = std::sqrt(dist2);
+  s.direction = d / s.distance;
+  const SurfaceHit light = surfaceAt(scene_, tri.instance, tri.triangle, b1, b2, s.direction);
+  const float cosLight = std::abs(glm::dot(light.geometricNormal, s.direction));
+  if (!(cosLight > 0.0f) || light.emission == glm::vec3(0.0f)) return s;
+  s.radiance = light.emission;
+  s.pdf = dist2 / (cosLight * tri.area);  // area density converted to solid angle
+  return s;
+}
+
+LightSample LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u) const {
+  if (empty()) return {};
+  const Distribution1D::Discrete pick = selection_.sampleDiscrete(uSelect);
+  const int n = int(punctual_.size()), m = int(triangles_.size());
+  LightSample s;
+  if (pick.index < n) {
+    s = samplePunctual(*punctual_[pick.index], point);
+    s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;
+  } else if (pick.index < n + m) {
+    s = sampleTriangle(triangles_[pick.index - n], point, u);
+  } else {
+    const EnvironmentSample e = environment_.sample(u);
+    s.direction = e.direction;
+    s.distance = kInfinity;
+    s.radiance = e.radiance;
+    s.pdf = e.pdf;
+  }
+  s.pdf *= pick.pmf;
+  return s;
+}
+
+float LightSet::pdfArea(uint32_t instance, uint32_t triangle, const glm::vec3& from,
+                        const glm::vec3& lightPoint, const glm::vec3& lightNormal) const {
+  const auto it = triangleIndex_.find(triangleKey(instance, triangle));
+  if (it == triangleIndex_.end()) return 0.0f;
+  const AreaTriangle& tri = triangles_[it->second];
+  const glm::vec3 d = lightPoint - from;
+  const float dist2 = glm::dot(d, d);
+  const float cosLight = std::abs(glm::dot(lightNormal, d)) / std::sqrt(dist2);
+  if (!(cosLight > 0.0f)) return 0.0f;
+  return selection_.pmf(int(punctual_.size() + it->second)) * dist2 / (cosLight * tri.area);
+}
+
+float LightSet::pdfEnvironment(const glm::vec3& dir) const {
+  if (environment_.empty()) return 0.0f;
+  return selection_.pmf(selection_.size() - 1) * environment_.pdf(dir);
+}
+
+glm::vec3 LightSet::environmentRadiance(const glm::vec3& dir) const {
+  return lookupEnvironment(scene_.environment, dir);
+}
+
+}  // namespace photovr

@@ -1,0 +1,65 @@
+// Every light the tracer samples for next-event estimation: KHR_lights_punctual (point,
+// spot, directional), emissive triangles as area lights, and the environment. One light
+// is picked per estimate, in proportion to an estimate of its power.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "trace/environment_sampling.h"
+#include "trace/sampling.h"
+
+namespace photovr {
+
+struct LightSample {
+  glm::vec3 direction{0.0f};  // unit, from the shaded point towards the light
+  float distance = 0.0f;      // to the light point; infinity for directional / environment
+  glm::vec3 radiance{0.0f};   // arriving at the shaded point (unoccluded), before 1/pdf
+  float pdf = 0.0f;           // selection x solid-angle density; selection only for deltas
+  bool isDelta = false;       // punctual: cannot be hit by BSDF rays, no MIS
+  bool isArea = false;        // emissive triangle: shadow ray stops short of it
+  bool valid() const { return pdf > 0.0f; }
+};
+
+class LightSet {
+ public:
+  // Keeps references to 'scene' (and its environment).
+  explicit LightSet(const Scene& scene);
+
+  bool empty() const { return selection_.size() == 0; }
+  bool hasEnvironment() const { return !environment_.empty(); }
+  size_t punctualCount() const { return punctual_.size(); }
+  size_t areaTriangleCount() const { return triangles_.size(); }
+
+  LightSample sample(const glm::vec3& point, float uSelect, glm::vec2 u) const;
+
+  // Densities of sample() for a direction found by BSDF sampling (for MIS):
+  // an emissive triangle hit at 'lightPoint' with geometric normal 'lightNormal' ...
+  float pdfArea(uint32_t instance, uint32_t triangle, const glm::vec3& from,
+                const glm::vec3& lightPoint, const glm::vec3& lightNormal) const;
+  // ... or the environment in direction 'dir'.
+  float pdfEnvironment(const glm::vec3& dir) const;
+  glm::vec3 environmentRadiance(const glm::vec3& dir) const;
+
+ private:
+  struct AreaTriangle {
+    uint32_t instance, triangle;
+    glm::vec3 p0, e1, e2;  // world
+    float area;
+  };
+  LightSample samplePunctual(const Light& light, const glm::vec3& point) const;
+  LightSample sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u) const;
+
+  const Scene& scene_;
+  std::vector<const Light*> punctual_;
+  std::vector<AreaTriangle> triangles_;
+  std::unordered_map<uint64_t, uint32_t> triangleIndex_;  // (instance << 32 | triangle) -> index
+  EnvironmentSampler environment_;
+  Distribution1D selection_;  // over punctual_, then triangles_, then the environment
+};
+
+}  // namespace photovr

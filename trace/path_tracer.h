@@ -1,0 +1,65 @@
+// The path tracer (thesis Algorithm 2, with NEE + MIS for lights that have area): one
+// function continues a path from a surface hit — the pure path tracer and the hybrid both
+// call it — and a renderer traces primary rays through an EyeCamera's jittered samples.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "core/scene.h"
+#include "trace/embree_scene.h"
+#include "trace/lights.h"
+#include "trace/rng.h"
+#include "trace/surface.h"
+
+namespace photovr {
+
+struct TraceSettings {
+  int samplesPerPixel = 1;
+  int maxBounces = 8;            // indirect bounces after the first hit (--bounces)
+  int russianRouletteDepth = 5;  // thesis Algorithm 2: roulette from depth 5
+  uint32_t seed = 0;
+};
+
+// Everything a path needs, built once per scene.
+struct TraceContext {
+  const Scene& scene;
+  const EmbreeScene& embree;
+  const LightSet& lights;
+  TraceSettings settings;
+};
+
+struct PathResult {
+  glm::vec3 radiance{0.0f};  // reflected radiance towards wo (emission of the start excluded)
+  glm::vec3 albedo{0.0f};    // base colour of the first non-mirror-like vertex (denoiser AOV)
+  uint32_t rejected = 0;     // samples dropped because they were NaN/Inf
+  uint32_t rays = 0;         // bounce and shadow rays traced
+};
+
+// Radiance leaving 'hit' towards 'wo' (unit, pointing away from the surface), from every
+// path continuing there: NEE at each vertex, BSDF sampling, MIS, Russian roulette.
+PathResult continuePath(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& wo,
+                        SampleCounters counters);
+
+// One eye's image. Rows bottom-up, as GL stores them (row 0 is the lowest).
+struct EyeImage {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> color;   // mean radiance over the samples
+  std::vector<glm::vec3> albedo;  // AOVs of the primary hit
+  std::vector<glm::vec3> normal;
+  std::vector<float> depth;       // reversed-Z, as the G-buffer's
+  std::vector<uint32_t> samples;  // samples taken per pixel
+  uint64_t rays = 0;              // rays traced (primary, bounce, shadow)
+  uint64_t rejectedSamples = 0;   // NaN/Inf samples caught and dropped
+  size_t index(int x, int y) const { return size_t(y) * width + x; }
+};
+
+// Pure path tracing of one eye: every sample of a pixel starts at that pixel's jittered
+// position for this frame (camera.jitter), as the rasterizer's does.
+EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& camera, uint32_t eye,
+                          uint32_t frame);
+
+}  // namespace photovr

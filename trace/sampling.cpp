@@ -1,0 +1,152 @@
+#include "trace/sampling.h"
+
+#include <cassert>
+#include <limits>
+
+namespace photovr {
+
+Frame Frame::fromZ(const glm::vec3& n) {
+  Frame f;
+  f.z = n;
+  orthonormalBasis(n, f.x, f.y);
+  return f;
+}
+
+void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  b1 = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  b2 = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);
+  float r, theta;
+  if (std::abs(o.x) > std::abs(o.y)) {
+    r = o.x;
+    theta = 0.25f * kPi * (o.y / o.x);
+  } else {
+    r = o.y;
+    theta = 0.5f * kPi - 0.25f * kPi * (o.x / o.y);
+  }
+  return r * glm::vec2(std::cos(theta), std::sin(theta));
+}
+
+glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
+  const glm::vec2 d = sampleUniformDiskConcentric(u);
+  return {d.x, d.y, safeSqrt(1.0f - d.x * d.x - d.y * d.y)};
+}
+
+glm::vec3 sampleUniformSphere(glm::vec2 u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = safeSqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+glm::vec3 sampleUniformCone(glm::vec2 u, float cosThetaMax) {
+  const float cosTheta = (1.0f - u.x) + u.x * cosThetaMax;
+  const float sinTheta = safeSqrt(1.0f - cosTheta * cosTheta);
+  const float phi = 2.0f * kPi * u.y;
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+}
+
+float uniformConePdf(float cosThetaMax) {
+  const float solidAngle = 2.0f * kPi * (1.0f - cosThetaMax);
+  return solidAngle > 0.0f ? 1.0f / solidAngle : 0.0f;
+}
+
+float powerHeuristic(int nf, float fPdf, int ng, float gPdf) {
+  const float f = float(nf) * fPdf, g = float(ng) * gPdf;
+  if (f == 0.0f) return 0.0f;
+  // f^2 overflows for pdfs of near-delta lobes (> 1.8e19); then f dominates (pbrt 4th ed.,
+  // sec. 2.2.2, PowerHeuristic).
+  if (!isFinite(f * f)) return 1.0f;
+  return (f * f) / (f * f + g * g);
+}
+
+// ---------------------------------------------------------------------------------------
+
+Distribution1D::Distribution1D(std::span<const float> f) : func_(f.size()), cdf_(f.size() + 1) {
+  assert(!f.empty());
+  const size_t n = f.size();
+  double sum = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    // Negative and NaN entries would break the cdf's monotonicity; they count as zero.
+    func_[i] = f[i] > 0.0f ? std::min(f[i], std::numeric_limits<float>::max()) : 0.0f;
+    sum += func_[i];
+  }
+  if (sum == 0.0) {
+    std::fill(func_.begin(), func_.end(), 1.0f);
+    sum = double(n);
+  }
+  // Accumulate in double: float sums of millions of pixels lose the small cells.
+  double running = 0.0;
+  cdf_[0] = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    running += func_[i];
+    cdf_[i + 1] = float(running / sum);
+  }
+  cdf_[n] = 1.0f;
+  integral_ = float(sum / double(n));
+}
+
+int Distribution1D::findCell(float u) const {
+  // The last cell whose cdf start is <= u; cells of zero width are skipped because
+  // upper_bound passes over runs of equal cdf values.
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+  const int i = int(it - cdf_.begin()) - 1;
+  return std::clamp(i, 0, size() - 1);
+}
+
+Distribution1D::Sample Distribution1D::sampleContinuous(float u) const {
+  const int i = findCell(u);
+  float du = u - cdf_[i];
+  const float width = cdf_[i + 1] - cdf_[i];
+  if (width > 0.0f) du /= width;
+  Sample s;
+  s.index = i;
+  s.x = std::min((float(i) + std::clamp(du, 0.0f, 1.0f)) / float(size()), kOneMinusEpsilon);
+  s.pdf = func_[i] / integral_;
+  return s;
+}
+
+Distribution1D::Discrete Distribution1D::sampleDiscrete(float u) const {
+  const int i = findCell(u);
+  return {i, pmf(i)};
+}
+
+float Distribution1D::pdf(float x) const {
+  return func_[cellIndex(x, size())] / integral_;
+}
+
+// ---------------------------------------------------------------------------------------
+
+Distribution2D::Distribution2D(std::span<const float> f, int nx, int ny) {
+  assert(nx > 0 && ny > 0 && f.size() == size_t(nx) * size_t(ny));
+  rows_.reserve(ny);
+  std::vector<float> rowIntegrals(ny);
+  for (int y = 0; y < ny; ++y) {
+    rows_.emplace_back(f.subspan(size_t(y) * nx, nx));
+    // A row whose f is all zero was made constant by Distribution1D; its marginal weight
+    // must stay zero, so take the integral of the original row.
+    double sum = 0.0;
+    for (int x = 0; x < nx; ++x) sum += f[size_t(y) * nx + x] > 0.0f ? f[size_t(y) * nx + x] : 0.0f;
+    rowIntegrals[y] = float(sum / nx);
+  }
+  marginal_ = Distribution1D(rowIntegrals);
+}
+
+Distribution2D::Sample Distribution2D::sample(glm::vec2 u) const {
+  const Distribution1D::Sample sy = marginal_.sampleContinuous(u.y);
+  const Distribution1D::Sample sx = rows_[sy.index].sampleContinuous(u.x);
+  return {{sx.x, sy.x}, sx.pdf * sy.pdf, {sx.index, sy.index}};
+}
+
+float Distribution2D::pdf(glm::vec2 p) const {
+  return marginal_.pdf(p.y) * rows_[cellIndex(p.y, height())].pdf(p.x);
+}
+
+}  // namespace photovr

@@ -1,0 +1,132 @@
+#include "trace/surface.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "trace/texture_sampling.h"
+
+namespace photovr {
+namespace {
+
+struct Interpolated {
+  glm::vec3 normal{0.0f};
+  glm::vec4 tangent{0.0f};
+  glm::vec2 uv0{0.0f}, uv1{0.0f};
+};
+
+template <typename T>
+T lerp3(const std::vector<T>& a, const uint32_t* idx, float b0, float b1, float b2) {
+  return b0 * a[idx[0]] + b1 * a[idx[1]] + b2 * a[idx[2]];
+}
+
+Interpolated interpolate(const Mesh& m, const uint32_t* idx, float b1, float b2) {
+  const float b0 = 1.0f - b1 - b2;
+  Interpolated r;
+  if (!m.normals.empty()) r.normal = lerp3(m.normals, idx, b0, b1, b2);
+  if (!m.tangents.empty()) r.tangent = lerp3(m.tangents, idx, b0, b1, b2);
+  if (!m.uv0.empty()) r.uv0 = lerp3(m.uv0, idx, b0, b1, b2);
+  if (!m.uv1.empty()) r.uv1 = lerp3(m.uv1, idx, b0, b1, b2);
+  return r;
+}
+
+glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
+  const float len = glm::length(v);
+  return len > 0.0f && std::isfinite(len) ? v / len : fallback;
+}
+
+// Normal map in the interpolated tangent frame (glTF 3.9.3), as the G-buffer shader does.
+glm::vec3 applyNormalMap(const Scene& scene, const Material& mat, const Interpolated& in,
+                         const glm::mat3& toWorld, const glm::mat3& normalToWorld, glm::vec3 n) {
+  if (!mat.normalTexture.valid() || glm::dot(glm::vec3(in.tangent), glm::vec3(in.tangent)) == 0.0f)
+    return n;
+  const glm::vec3 t0 = safeNormalize(toWorld * glm::vec3(in.tangent), glm::vec3(0.0f));
+  const glm::vec3 t = safeNormalize(t0 - n * glm::dot(n, t0), glm::vec3(0.0f));
+  if (t == glm::vec3(0.0f)) return n;
+  const glm::vec3 b = glm::cross(n, t) * (in.tangent.w < 0.0f ? -1.0f : 1.0f);
+  glm::vec3 tn = glm::vec3(sampleSlot(scene, mat.normalTexture, in.uv0, in.uv1, false,
+                                      glm::vec4(0.5f, 0.5f, 1.0f, 1.0f))) *
+                     2.0f -
+                 1.0f;
+  tn.x *= mat.normalScale;
+  tn.y *= mat.normalScale;
+  (void)normalToWorld;
+  return safeNormalize(tn.x * t + tn.y * b + tn.z * n, n);
+}
+
+BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolated& in) {
+  const glm::vec4 base = mat.baseColorFactor * sampleSlot(scene, mat.baseColorTexture, in.uv0,
+                                                          in.uv1, true, glm::vec4(1.0f));
+  const glm::vec4 mr =
+      sampleSlot(scene, mat.metallicRoughnessTexture, in.uv0, in.uv1, false, glm::vec4(1.0f));
+  BsdfParams p;
+  p.baseColor = glm::clamp(glm::vec3(base), 0.0f, 1.0f);
+  p.metallic = glm::clamp(mat.metallicFactor * mr.b, 0.0f, 1.0f);
+  p.roughness = glm::clamp(mat.roughnessFactor * mr.g, 0.0f, 1.0f);
+  return p;
+}
+
+}  // namespace
+
+SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& incoming) {
+  const Instance& inst = scene.instances[instance];
+  const Mesh& mesh = scene.meshes[inst.mesh];
+  const Material& mat = scene.materials[mesh.material];
+  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
+  const glm::mat4& m = inst.transform;
+  const glm::vec3 p0 = glm::vec3(m * glm::vec4(mesh.positions[idx[0]], 1.0f));
+  const glm::vec3 p1 = glm::vec3(m * glm::vec4(mesh.positions[idx[1]], 1.0f));
+  const glm::vec3 p2 = glm::vec3(m * glm::vec4(mesh.positions[idx[2]], 1.0f));
+  SurfaceHit h;
+  h.instance = instance;
+  h.triangle = triangle;
+  h.position = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
+  // Float error of the barycentric combination: a few ulp of the largest magnitude involved
+  // (pbrt-v4 §6.8.5's bound for this form is gamma(7) * sum |terms|; 8 eps is a safe cap).
+  const glm::vec3 mag = glm::abs(p0) + glm::abs(b1 * (p1 - p0)) + glm::abs(b2 * (p2 - p0));
+  h.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
+  glm::vec3 ng = safeNormalize(glm::cross(p1 - p0, p2 - p0), glm::vec3(0, 1, 0));
+  const Interpolated in = interpolate(mesh, idx, b1, b2);
+  const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
+  glm::vec3 ns = safeNormalize(normalToWorld * in.normal, ng);
+  ns = applyNormalMap(scene, mat, in, glm::mat3(m), normalToWorld, ns);
+  h.frontFace = glm::dot(ng, incoming) < 0.0f;
+  if (!h.frontFace) ng = -ng;
+  // Shading normal on the viewer's side of the geometry (back faces of double-sided
+  // materials shade with the flipped normal, glTF 3.9.6).
+  if (glm::dot(ns, ng) < 0.0f) ns = -ns;
+  h.geometricNormal = ng;
+  h.shadingNormal = ns;
+  h.bsdf = materialAt(scene, mat, in);
+  if (h.frontFace || mat.doubleSided)
+    h.emission = mat.emission() * glm::vec3(sampleSlot(scene, mat.emissiveTexture, in.uv0, in.uv1,
+                                                       true, glm::vec4(1.0f)));
+  return h;
+}
+
+glm::vec3 emittedRadiance(const Scene&, const SurfaceHit& hit) {
+  return hit.emission;
+}
+
+glm::vec3 offsetRayOrigin(const SurfaceHit& hit, const glm::vec3& dir) {
+  // Leave on the side the new ray travels to.
+  const glm::vec3 n =
+      glm::dot(dir, hit.geometricNormal) >= 0.0f ? hit.geometricNormal : -hit.geometricNormal;
+  // Wachter & Binder 2019, listing 6-1: constants origin = 1/32, float_scale = 1/65536,
+  // int_scale = 256.
+  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+  const glm::vec3 p = hit.position + n * hit.positionError;
+  glm::vec3 out;
+  for (int k = 0; k < 3; ++k) {
+    const int offset = int(kIntScale * n[k]);
+    int32_t bits;
+    std::memcpy(&bits, &p[k], sizeof bits);
+    bits += (p[k] < 0.0f) ? -offset : offset;
+    float moved;
+    std::memcpy(&moved, &bits, sizeof moved);
+    out[k] = std::abs(p[k]) < kOrigin ? p[k] + kFloatScale * n[k] : moved;
+  }
+  return out;
+}
+
+}  // namespace photovr

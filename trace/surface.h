@@ -1,0 +1,40 @@
+// A surface point the tracer shades: position, normals, material inputs at the hit. Built
+// from (instance, triangle, barycentrics) — the same record the G-buffer stores — so the
+// pure path tracer and the hybrid start from identical data.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "trace/bsdf.h"
+
+namespace photovr {
+
+struct SurfaceHit {
+  glm::vec3 position{0.0f};         // world
+  glm::vec3 geometricNormal{0.0f};  // world, unit, facing the side the ray came from
+  glm::vec3 shadingNormal{0.0f};    // world, unit, normal-mapped, same side as geometricNormal
+  float positionError = 0.0f;       // bound on |position - exact|, for the ray offset
+  BsdfParams bsdf;
+  glm::vec3 emission{0.0f};  // emitted radiance towards the viewer (front faces only)
+  uint32_t instance = 0, triangle = 0;
+  bool frontFace = true;  // the ray hit the counter-clockwise side
+};
+
+// 'incoming' is the direction the ray travelled (towards the surface).
+SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& incoming);
+
+// Origin for a ray leaving 'hit' along 'dir': the hit moved off the surface along the
+// geometric normal by its error bound (Wachter & Binder, "A Fast and Robust Method for
+// Avoiding Self-Intersection", Ray Tracing Gems ch. 6, 2019: integer-ulp offset far from
+// the origin, a fixed float offset near it).
+glm::vec3 offsetRayOrigin(const SurfaceHit& hit, const glm::vec3& dir);
+
+// Emitted radiance of a material at a hit seen from 'toViewer' (glTF emission is one-sided
+// for single-sided materials, two-sided for double-sided ones).
+glm::vec3 emittedRadiance(const Scene& scene, const SurfaceHit& hit);
+
+}  // namespace photovr

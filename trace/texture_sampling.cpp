@@ -1,0 +1,64 @@
+#include "trace/texture_sampling.h"
+
+#include <cmath>
+
+#include "core/image_io.h"
+
+namespace photovr {
+namespace {
+
+int wrapIndex(int i, int n, Texture::Wrap mode) {
+  switch (mode) {
+    case Texture::Wrap::Clamp:
+      return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    case Texture::Wrap::Mirror: {
+      const int period = 2 * n;
+      int m = i % period;
+      if (m < 0) m += period;
+      return m < n ? m : period - 1 - m;
+    }
+    default: {
+      const int m = i % n;
+      return m < 0 ? m + n : m;
+    }
+  }
+}
+
+glm::vec4 texel(const Texture& t, int x, int y, bool srgb) {
+  const uint8_t* p = &t.rgba[(size_t(wrapIndex(y, t.height, t.wrapT)) * t.width +
+                              size_t(wrapIndex(x, t.width, t.wrapS))) *
+                             4];
+  glm::vec4 c(p[0], p[1], p[2], p[3]);
+  c /= 255.0f;
+  if (srgb)
+    for (int k = 0; k < 3; ++k) c[k] = srgbToLinear(c[k]);
+  return c;
+}
+
+}  // namespace
+
+glm::vec4 sampleTexture(const Texture& t, glm::vec2 uv, bool srgb) {
+  if (t.width <= 0 || t.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y))
+    return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  // Keep uv in a sane range before converting to int: wrap modes are periodic anyway.
+  const glm::vec2 p =
+      glm::vec2(std::fmod(uv.x, 4096.0f) * t.width, std::fmod(uv.y, 4096.0f) * t.height);
+  if (t.nearest) return texel(t, int(std::floor(p.x)), int(std::floor(p.y)), srgb);
+  const glm::vec2 q = p - 0.5f;
+  const int x0 = int(std::floor(q.x)), y0 = int(std::floor(q.y));
+  const float fx = q.x - float(x0), fy = q.y - float(y0);
+  // GL filters sRGB textures after decoding (EXT_texture_sRGB), so decode per texel first.
+  const glm::vec4 top = glm::mix(texel(t, x0, y0, srgb), texel(t, x0 + 1, y0, srgb), fx);
+  const glm::vec4 bottom = glm::mix(texel(t, x0, y0 + 1, srgb), texel(t, x0 + 1, y0 + 1, srgb), fx);
+  return glm::mix(top, bottom, fy);
+}
+
+glm::vec4 sampleSlot(const Scene& scene, const TextureRef& ref, glm::vec2 uv0, glm::vec2 uv1,
+                     bool srgb, glm::vec4 fallback) {
+  if (!ref.valid() || ref.texture >= int(scene.textures.size())) return fallback;
+  const glm::vec2 uv = ref.texCoord == 1 ? uv1 : uv0;
+  const glm::vec3 t = ref.transform.matrix() * glm::vec3(uv, 1.0f);
+  return sampleTexture(scene.textures[ref.texture], glm::vec2(t), srgb);
+}
+
+}  // namespace photovr
