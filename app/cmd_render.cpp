@@ -11,19 +11,22 @@ namespace photovr::app {
 const char* const kRenderHelp =
     "usage: photovr render [options]\n"
     "Renders a scene headless. Per eye (left/, right/ or mono/) it writes:\n"
-    "  --mode gbuffer (default): depth.exr (reversed-Z: near 1, far 0), normal.png,\n"
-    "    albedo.png, ids.png, and a gbuffer.png mosaic (albedo, normal / ids, depth);\n"
-    "  --mode pt: color.exr (linear radiance), albedo.exr, normal.exr, depth.exr, and a\n"
-    "    side-by-side tone-mapped color.png (Khronos PBR Neutral, sRGB).\n"
+    "  --mode hybrid (default; GL G-buffer primaries continued by Embree) and --mode pt\n"
+    "    (Embree alone): color.exr (linear radiance), albedo.exr, normal.exr, depth.exr\n"
+    "    (reversed-Z: near 1, far 0), samples.exr; hybrid adds the denoiser inputs\n"
+    "    diffuse.exr, specular.exr (albedo-demodulated) and their albedos; and a\n"
+    "    side-by-side tone-mapped color.png (Khronos PBR Neutral, sRGB);\n"
+    "  --mode gbuffer: depth.exr, normal.png, albedo.png, ids.png and a gbuffer.png mosaic\n"
+    "    (albedo, normal / ids, depth).\n"
     "  --scene NAME|FILE      atrium (default), cornell, spheres, or a .gltf/.glb file\n"
     "  --env FILE             equirectangular .hdr/.exr environment\n"
     "  --width W --height H   per-eye size (default 960x1080, the DK2's eye; 1..8192)\n"
-    "  --mode gbuffer|pt      what to render (default gbuffer)\n"
-    "  --spp N                pt: samples per pixel per frame (1..65536, default 1)\n"
-    "  --bounces N            pt: indirect bounces after the first hit (0..64, default 8)\n"
-    "  --frames F             pt: frames accumulated with sub-pixel jitter (1..65536)\n"
-    "  --seed S               pt: random seed (default 0)\n"
-    "  --exposure E           pt: exposure multiplier for color.png (default 1)\n"
+    "  --mode hybrid|pt|gbuffer  what to render (default hybrid)\n"
+    "  --spp N                samples per pixel per frame (1..65536, default 1)\n"
+    "  --bounces N            indirect bounces after the first hit (0..64, default 8)\n"
+    "  --frames F             frames accumulated with sub-pixel jitter (1..65536, default 1)\n"
+    "  --seed S               random seed (default 0)\n"
+    "  --exposure E           exposure multiplier for color.png (default 1)\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
     "  --out DIR              output folder (default out/<scene>)\n";
 
@@ -48,7 +51,7 @@ RenderRequest parseRenderRequest(const Args& args) {
     throw UsageError("render: unexpected argument '" + o.positional()[0] + "'");
   RenderRequest r;
   r.sceneSpec = o.text("--scene", "atrium");
-  r.mode = o.choice("--mode", "gbuffer", {"gbuffer", "pt"});
+  r.mode = o.choice("--mode", "hybrid", {"hybrid", "pt", "gbuffer"});
   r.backend = o.text("--backend", "");
   r.width = o.integer("--width", kDk2EyeWidth, 1, 8192);
   r.height = o.integer("--height", kDk2EyeHeight, 1, 8192);
@@ -77,7 +80,9 @@ int runRender(const Args& args) {
     return 0;
   }
   const RenderRequest request = parseRenderRequest(args);
-  return request.mode == "pt" ? renderPathTracedMode(request) : renderGBufferMode(request);
+  if (request.mode == "pt") return renderPathTracedMode(request);
+  if (request.mode == "gbuffer") return renderGBufferMode(request);
+  return renderHybridMode(request);
 }
 
 }  // namespace photovr::app

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/gbuffer_output.h"
+#include "app/gl_context.h"
 #include "app/render_request.h"
 #include "gl/context.h"
 #include "gl/draw_stats.h"
@@ -11,25 +12,9 @@
 #include "gl/scene_gpu.h"
 
 namespace photovr::app {
-namespace {
-
-std::unique_ptr<gl::Context> createContext(const std::string& backend) {
-  if (!backend.empty()) return gl::Context::create({gl::parseBackend(backend)});
-  try {
-    return gl::Context::create({gl::Backend::EGL});
-  } catch (const gl::ContextError& e) {
-    std::cerr << "photovr: " << e.what() << "; using osmesa\n";
-    return gl::Context::create({gl::Backend::OSMesa});
-  }
-}
-
-}  // namespace
 
 int renderGBufferMode(const RenderRequest& r) {
-  if (!r.backend.empty()) gl::parseBackend(r.backend);  // validate before any work
-  auto context = createContext(r.backend);
-  std::cerr << "photovr: " << gl::backendName(context->backend()) << ", OpenGL "
-            << context->version() << ", " << context->renderer() << "\n";
+  auto context = createRenderContext(r.backend);
   const auto eyes = eyeCameras(r.view, r.width, r.height, 0);
   gl::SceneGpu gpu(r.scene);
   gl::GBufferPass pass(r.width, r.height,

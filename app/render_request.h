@@ -31,6 +31,7 @@ inline const char* eyeFolder(const View& v, int eye) {
 
 int renderGBufferMode(const RenderRequest& request);
 int renderPathTracedMode(const RenderRequest& request);
+int renderHybridMode(const RenderRequest& request);
 
 // Progress on stderr while a long render runs, only when stderr is a terminal.
 void reportProgress(double fraction, double raysPerSecond, double secondsLeft);

@@ -184,6 +184,8 @@ void GBufferPass::copySideBySideToLayers() {
   }
 }
 
+void GBufferPass::finish() const { api::Finish(); }
+
 GBufferImage GBufferPass::read(int eye) const {
   GBufferImage img;
   img.width = width_;

@@ -52,6 +52,7 @@ class GBufferPass {
   void render(const SceneGpu& scene, const std::array<EyeCamera, 2>& eyes,
               const std::array<glm::mat4, 2>& previousViewProjection);
   GBufferImage read(int eye) const;
+  void finish() const;  // waits until the G-buffer is complete (for timing stages apart)
 
   EyeRouting routing() const { return routing_; }
   int width() const { return width_; }

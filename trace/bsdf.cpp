@@ -1,5 +1,7 @@
 #include "trace/bsdf.h"
 
+#include <algorithm>
+
 #include "trace/sampling.h"
 
 namespace photovr {
@@ -134,6 +136,28 @@ glm::vec3 evalBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi
   if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !halfVector(wo, wi, h)) return glm::vec3(0.0f);
   const Lobes l = lobes(p);
   return specular(l, wo, wi, h) + diffuse(l, wo, wi);
+}
+
+BsdfLobes evalBsdfLobes(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  glm::vec3 h;
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !halfVector(wo, wi, h)) return {};
+  const Lobes l = lobes(p);
+  return {diffuse(l, wo, wi), specular(l, wo, wi, h)};
+}
+
+glm::vec3 diffuseAlbedo(const BsdfParams& p) {
+  return (1.0f - std::clamp(p.metallic, 0.0f, 1.0f)) * p.baseColor;
+}
+
+glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
+  // Karis 2014, EnvBRDFApprox (after Lazarov 2013): scale and bias of F0.
+  const glm::vec3 f0 = glm::mix(glm::vec3(kDielectricF0), p.baseColor, std::clamp(p.metallic, 0.0f, 1.0f));
+  const float r = std::clamp(p.roughness, 0.0f, 1.0f), nv = std::clamp(cosThetaO, 0.0f, 1.0f);
+  const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f), c1(1.0f, 0.0425f, 1.04f, -0.04f);
+  const glm::vec4 q = r * c0 + c1;
+  const float a004 = std::min(q.x * q.x, std::exp2(-9.28f * nv)) * q.x + q.y;
+  const glm::vec2 ab = glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(q.z, q.w);
+  return f0 * ab.x + ab.y;
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {

@@ -94,6 +94,21 @@ float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha);
 // "EnergyDirectionalAlbedoAtMostOne").
 glm::vec3 evalBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
 
+// The two lobes of evalBsdf separately (their sum is evalBsdf), for splitting radiance into
+// diffuse and specular parts for the denoiser.
+struct BsdfLobes {
+  glm::vec3 diffuse{0.0f}, specular{0.0f};
+  glm::vec3 total() const { return diffuse + specular; }
+};
+BsdfLobes evalBsdfLobes(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
+
+// Albedos that demodulate the two lobes' radiance (SVGF, Schied et al. 2017, sec. 4.1):
+// diffuse = (1 - metallic) baseColor; specular = the split-sum directional albedo of the
+// GGX lobe by Karis's analytic fit ("Physically Based Shading on Mobile", 2014), which
+// needs no lookup table and is smooth in roughness and angle.
+glm::vec3 diffuseAlbedo(const BsdfParams& p);
+glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO);
+
 // Probability that sampleBsdf picks the specular lobe: its weight estimate lum(F(n.wo))
 // against the diffuse lobe's lum((1 - F(n.wo))(1 - metallic) baseColor). For a white
 // dielectric this is the thesis's "probability by the Fresnel term" (Algorithm 5), p =

@@ -25,15 +25,15 @@ struct PathVertex {
 
 // Next-event estimation at one vertex, MIS-weighted against BSDF sampling for lights with
 // area (Veach 1997 §9.2, power heuristic).
-glm::vec3 directLight(const TraceContext& ctx, const PathVertex& v, const Frame& frame,
+BsdfLobes directLight(const TraceContext& ctx, const PathVertex& v, const Frame& frame,
                       Sampler& sampler, uint64_t& rays) {
-  if (ctx.lights.empty()) return glm::vec3(0.0f);
+  if (ctx.lights.empty()) return {};
   const float uSelect = sampler.next();
   const LightSample ls = ctx.lights.sample(v.hit.position, uSelect, sampler.next2());
-  if (!ls.valid() || glm::dot(ls.direction, v.hit.geometricNormal) <= 0.0f) return glm::vec3(0.0f);
+  if (!ls.valid() || glm::dot(ls.direction, v.hit.geometricNormal) <= 0.0f) return {};
   const glm::vec3 woL = frame.toLocal(v.wo), wiL = frame.toLocal(ls.direction);
-  const glm::vec3 f = evalBsdf(v.hit.bsdf, woL, wiL) * std::abs(wiL.z);
-  if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
+  const BsdfLobes f = evalBsdfLobes(v.hit.bsdf, woL, wiL);
+  if (f.total() == glm::vec3(0.0f)) return {};
   // The shadow ray starts at the offset origin, so its length is measured from there: the
   // offset (up to ~1e-4 m on large triangles) may exceed the shortening.
   const glm::vec3 origin = offsetRayOrigin(v.hit, ls.direction);
@@ -43,9 +43,10 @@ glm::vec3 directLight(const TraceContext& ctx, const PathVertex& v, const Frame&
     if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
   }
   ++rays;
-  if (ctx.embree.occluded(origin, ls.direction, 0.0f, tfar)) return glm::vec3(0.0f);
+  if (ctx.embree.occluded(origin, ls.direction, 0.0f, tfar)) return {};
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, pdfBsdf(v.hit.bsdf, woL, wiL));
-  return f * ls.radiance * (w / ls.pdf);
+  const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
+  return {f.diffuse * scale, f.specular * scale};
 }
 
 // Emission or environment found by a BSDF-sampled ray, MIS-weighted against NEE.
@@ -66,13 +67,29 @@ bool finite(const glm::vec3& v) {
   return isFinite(v);
 }
 
+// Fraction of each channel of a BSDF-sampled direction's weight that belongs to the
+// diffuse lobe: splitting by f_d / (f_d + f_s) keeps both parts unbiased (the expectation
+// of f_d / f * f cos L / pdf is the integral of f_d cos L).
+glm::vec3 diffuseShare(const BsdfParams& p, const glm::vec3& woL, const glm::vec3& wiL) {
+  const BsdfLobes f = evalBsdfLobes(p, woL, wiL);
+  const glm::vec3 total = f.total();
+  glm::vec3 share(0.0f);
+  for (int k = 0; k < 3; ++k) share[k] = total[k] > 0.0f ? f.diffuse[k] / total[k] : 0.0f;
+  return share;
+}
+
+void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& share) {
+  r.diffuse += contribution * share;
+  r.specular += contribution * (1.0f - share);
+}
+
 }  // namespace
 
 PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const glm::vec3& wo,
                         SampleCounters counters) {
   PathResult result;
   PathVertex v{start, wo};
-  glm::vec3 beta(1.0f);
+  glm::vec3 beta(1.0f), share(1.0f);  // share: diffuse fraction of the first bounce
   bool albedoSet = false;
   uint64_t rays = 0;
   for (int depth = 0;; ++depth) {
@@ -83,18 +100,25 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
       albedoSet = true;
     }
     const Frame frame = Frame::fromZ(v.hit.shadingNormal);
-    result.radiance += beta * directLight(ctx, v, frame, sampler, rays);
-    const BsdfSample bs =
-        sampleBsdf(v.hit.bsdf, frame.toLocal(v.wo), sampler.next2(), sampler.next());
+    const BsdfLobes direct = directLight(ctx, v, frame, sampler, rays);
+    if (depth == 0) {
+      result.diffuse += direct.diffuse;
+      result.specular += direct.specular;
+    } else {
+      addSplit(result, beta * direct.total(), share);
+    }
+    const glm::vec3 woL = frame.toLocal(v.wo);
+    const BsdfSample bs = sampleBsdf(v.hit.bsdf, woL, sampler.next2(), sampler.next());
     if (!bs.valid()) break;
     const glm::vec3 wi = frame.toWorld(bs.wi);
     if (glm::dot(wi, v.hit.geometricNormal) <= 0.0f) break;  // shading normal leaked below
+    if (depth == 0) share = diffuseShare(v.hit.bsdf, woL, bs.wi);
     beta *= bs.weight;
     const TraceHit th = ctx.embree.intersect(offsetRayOrigin(v.hit, wi), wi, 0.0f, kInfinity);
     ++rays;
     SurfaceHit next;
     if (th.hit) next = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi);
-    result.radiance += beta * foundLight(ctx, v, th, th.hit ? &next : nullptr, wi, bs.pdf);
+    addSplit(result, beta * foundLight(ctx, v, th, th.hit ? &next : nullptr, wi, bs.pdf), share);
     if (!th.hit || depth >= ctx.settings.maxBounces) break;
     if (depth + 1 >= ctx.settings.russianRouletteDepth) {
       // Thesis Algorithm 2: survive with the largest throughput channel, then rescale.
@@ -106,10 +130,11 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
   }
   if (!albedoSet) result.albedo = v.hit.bsdf.baseColor;
   result.rays = uint32_t(rays);
-  if (!finite(result.radiance)) {
-    result.radiance = glm::vec3(0.0f);
+  if (!finite(result.diffuse) || !finite(result.specular)) {
+    result.diffuse = result.specular = glm::vec3(0.0f);
     result.rejected = 1;
   }
+  result.radiance = result.diffuse + result.specular;
   return result;
 }
 

@@ -34,6 +34,8 @@ struct TraceContext {
 
 struct PathResult {
   glm::vec3 radiance{0.0f};  // reflected radiance towards wo (emission of the start excluded)
+  glm::vec3 diffuse{0.0f};   // the part reflected by the start's diffuse lobe ...
+  glm::vec3 specular{0.0f};  // ... and by its specular lobe (radiance = diffuse + specular)
   glm::vec3 albedo{0.0f};    // base colour of the first non-mirror-like vertex (denoiser AOV)
   uint32_t rejected = 0;     // samples dropped because they were NaN/Inf
   uint32_t rays = 0;         // bounce and shadow rays traced
@@ -52,8 +54,11 @@ struct EyeImage {
   std::vector<glm::vec3> normal;
   std::vector<float> depth;       // reversed-Z, as the G-buffer's
   std::vector<uint32_t> samples;  // samples taken per pixel
-  uint64_t rays = 0;              // rays traced (primary, bounce, shadow)
-  uint64_t rejectedSamples = 0;   // NaN/Inf samples caught and dropped
+  // Denoiser inputs (filled by the hybrid; empty where a renderer does not produce them):
+  // each lobe's mean radiance divided by its albedo, and those albedos.
+  std::vector<glm::vec3> diffuse, specular, diffuseAlbedo, specularAlbedo;
+  uint64_t rays = 0;             // rays traced (primary, bounce, shadow)
+  uint64_t rejectedSamples = 0;  // NaN/Inf samples caught and dropped
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 

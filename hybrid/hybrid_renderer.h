@@ -1,0 +1,55 @@
+// One hybrid frame: the stereo G-buffer in GL (one instanced draw per mesh for both eyes),
+// read back, each visible hit rebuilt from its visibility record and continued by Embree.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include "core/camera.h"
+#include "core/scene.h"
+#include "gl/gbuffer.h"
+#include "gl/scene_gpu.h"
+#include "hybrid/hybrid_tracer.h"
+#include "trace/embree_scene.h"
+#include "trace/lights.h"
+
+namespace photovr {
+
+struct HybridFrameTimes {
+  double gbufferMs = 0.0;   // GL: draw both eyes and wait for them
+  double readbackMs = 0.0;  // GL -> CPU copy of the G-buffer layers
+  double rebuildMs = 0.0;   // visibility records -> exact hits
+  double traceMs = 0.0;     // path continuation
+  uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
+  double cpuMs() const { return rebuildMs + traceMs; }  // the tracer's share
+  double totalMs() const { return gbufferMs + readbackMs + rebuildMs + traceMs; }
+};
+
+class HybridRenderer {
+ public:
+  // The GL context must be current. Keeps a reference to 'scene'.
+  HybridRenderer(const Scene& scene, int eyeWidth, int eyeHeight, bool hasLayerExtension,
+                 const TraceSettings& settings);
+
+  // Renders 'eyeCount' (1 or 2) eyes of frame 'frame'; a mono view passes the same camera
+  // twice and eyeCount 1.
+  std::array<EyeImage, 2> render(const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame,
+                                 HybridFrameTimes* times,
+                                 const std::array<const std::vector<uint16_t>*, 2>& sppMaps = {});
+
+  const gl::GBufferPass& gbuffer() const { return pass_; }
+  const EmbreeScene& embree() const { return embree_; }
+  const TraceContext& traceContext() const { return ctx_; }
+
+ private:
+  const Scene& scene_;
+  gl::SceneGpu gpu_;
+  gl::GBufferPass pass_;
+  EmbreeScene embree_;
+  LightSet lights_;
+  TraceContext ctx_;
+  std::array<glm::mat4, 2> previousViewProjection_{};
+  bool hasPrevious_ = false;
+};
+
+}  // namespace photovr

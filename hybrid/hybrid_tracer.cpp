@@ -1,0 +1,130 @@
+#include "hybrid/hybrid_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+
+#include "hybrid/hit_rebuild.h"
+#include "trace/bsdf.h"
+
+namespace photovr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr size_t kGrain = 256;  // pixels per task
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+void allocate(EyeImage& img, int w, int h) {
+  const size_t n = size_t(w) * h;
+  img.width = w;
+  img.height = h;
+  for (auto* v : {&img.color, &img.albedo, &img.normal, &img.diffuse, &img.specular,
+                  &img.diffuseAlbedo, &img.specularAlbedo})
+    v->assign(n, glm::vec3(0.0f));
+  img.depth.assign(n, 0.0f);
+  img.samples.assign(n, 0);
+}
+
+glm::vec3 clampAlbedo(const glm::vec3& a) {
+  return glm::max(a, glm::vec3(kMinDemodulationAlbedo));
+}
+
+struct PixelJob {
+  const TraceContext& ctx;
+  const EyeCamera& cam;
+  uint32_t eye, frame;
+};
+
+// All samples of one rebuilt pixel.
+void tracePixel(const PixelJob& job, const RebuiltHit& hit, const glm::vec3& dir, size_t i,
+                uint32_t spp, EyeImage& img, uint64_t& rays, uint64_t& rejected) {
+  SampleCounters counters{uint32_t(i), job.eye, job.frame, 0, 0, job.ctx.settings.seed};
+  glm::vec3 diffuse(0.0f), specular(0.0f), albedo(0.0f);
+  for (uint32_t s = 0; s < spp; ++s) {
+    counters.sample = s;
+    const PathResult r = continuePath(job.ctx, hit.surface, -dir, counters);
+    diffuse += r.diffuse;
+    specular += r.specular;
+    albedo += r.albedo;
+    rays += r.rays;
+    rejected += r.rejected;
+  }
+  const float inv = 1.0f / float(spp);
+  const BsdfParams& p = hit.surface.bsdf;
+  const glm::vec3 dAlb = clampAlbedo(diffuseAlbedo(p));
+  const glm::vec3 sAlb = clampAlbedo(specularAlbedo(p, glm::dot(hit.surface.shadingNormal, -dir)));
+  img.color[i] = (diffuse + specular) * inv + hit.surface.emission;
+  img.diffuse[i] = diffuse * inv / dAlb;
+  img.specular[i] = specular * inv / sAlb;
+  img.diffuseAlbedo[i] = dAlb;
+  img.specularAlbedo[i] = sAlb;
+  img.albedo[i] = albedo * inv;
+  img.samples[i] = spp;
+}
+
+}  // namespace
+
+EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
+                          uint32_t eye, uint32_t frame, const std::vector<uint16_t>* sppMap,
+                          HybridEyeStats* stats) {
+  EyeImage img;
+  allocate(img, g.width, g.height);
+  const size_t n = size_t(g.width) * g.height;
+  std::vector<RebuiltHit> hits(n);
+  std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0};
+  const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
+  const auto t0 = Clock::now();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>&
+                                                                      r) {
+    uint64_t out = 0;
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      const glm::uvec4 v = g.visibility[i];
+      const VisibilityRecord rec{v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)};
+      if (!rec.hit() || !isValidRecord(ctx.scene, rec)) continue;
+      const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
+      hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, cam.pixelRay(x, y));
+      out += hits[i].outside;
+    }
+    outside += out;
+  });
+  const auto t1 = Clock::now();
+  const PixelJob job{ctx, cam, eye, frame};
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+        enableFlushToZero();
+        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0;
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+          const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
+          const glm::vec3 dir = cam.pixelRay(x, y);
+          if (g.visibility[i].x == 0xFFFFFFFFu) {  // background: the environment, untraced
+            img.color[i] = ctx.lights.environmentRadiance(dir);
+            continue;
+          }
+          const uint32_t spp = sppMap ? (*sppMap)[i] : uint32_t(ctx.settings.samplesPerPixel);
+          img.normal[i] = hits[i].surface.shadingNormal;
+          img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
+          if (spp == 0) continue;
+          tracePixel(job, hits[i], dir, i, spp, img, tileRays, tileRejected);
+          ++tileTraced;
+        }
+        rays += tileRays;
+        rejected += tileRejected;
+        traced += tileTraced;
+      });
+  img.rays = rays;
+  img.rejectedSamples = rejected;
+  if (stats) {
+    stats->rebuildMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    stats->traceMs = msSince(t1);
+    stats->outsideHits = outside;
+    stats->tracedPixels = traced;
+  }
+  return img;
+}
+
+}  // namespace photovr

@@ -1,0 +1,34 @@
+// The CPU half of a hybrid frame: each visible pixel of a G-buffer is rebuilt exactly and
+// its paths continued by the tracer's own functions (continuePath), identical in
+// expectation to pure path tracing with the same camera and jitter.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/camera.h"
+#include "gl/gbuffer.h"
+#include "trace/path_tracer.h"
+
+namespace photovr {
+
+struct HybridEyeStats {
+  double rebuildMs = 0.0;     // visibility record -> exact surface hit
+  double traceMs = 0.0;       // continuePath over all samples
+  uint64_t outsideHits = 0;   // shared-edge raster/ray disagreements, clamped and counted
+  uint64_t tracedPixels = 0;  // pixels with samples > 0 that saw a surface
+};
+
+// 'samplesPerPixel': optional per-pixel sample counts (a lens-matched density map or a
+// hidden-area mask with 0 = not traced), in G-buffer order; null = ctx.settings' uniform
+// count. Rows bottom-up like the G-buffer. Fills color, the AOVs and the demodulated
+// diffuse/specular denoiser inputs.
+EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuffer,
+                          const EyeCamera& camera, uint32_t eye, uint32_t frame,
+                          const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats);
+
+// Albedos are clamped to this before demodulating, and the same clamped value is stored,
+// so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
+constexpr float kMinDemodulationAlbedo = 1e-3f;
+
+}  // namespace photovr
