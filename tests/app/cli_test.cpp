@@ -86,7 +86,7 @@ TEST(Cli, ExportedSceneLoadsBackWithTheSameCounts) {
 TEST(Cli, RenderWritesEveryImageForBothEyes) {
   const std::string dir = tempDir("render");
   const auto r =
-      runPhotovr("render --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
+      runPhotovr("render --mode gbuffer --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* eye : {"left", "right"})
     for (const char* file : {"depth.exr", "normal.png", "albedo.png", "ids.png"})
@@ -107,7 +107,7 @@ TEST(Cli, RenderWritesEveryImageForBothEyes) {
 TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
   const std::string dir = tempDir("mono");
   const auto r = runPhotovr(
-      "render --scene spheres --eyes mono --fovy 40 --backend osmesa "
+      "render --mode gbuffer --scene spheres --eyes mono --fovy 40 --backend osmesa "
       "--width 80 --height 40 --out " +
       dir);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -132,6 +132,29 @@ TEST(Cli, UnwritableOutputIsAnErrorNotACrash) {
       "/proc/photovr-cannot-write");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("/proc/photovr-cannot-write"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace photovr
+
+namespace photovr {
+namespace {
+
+TEST(Cli, HybridAndPathTracedRendersWriteColourAndAovs) {
+  for (const char* mode : {"hybrid", "pt"}) {
+    const std::string dir = testing::tempDir(std::string("traced-") + mode);
+    const auto r = testing::runPhotovr(std::string("render --mode ") + mode +
+                                       " --scene cornell --backend osmesa --width 24 --height 27 "
+                                       "--spp 2 --frames 2 --out " + dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("0 samples rejected"), std::string::npos) << r.output;
+    for (const char* eye : {"left", "right"})
+      for (const char* file : {"color.exr", "albedo.exr", "normal.exr", "depth.exr", "samples.exr"})
+        EXPECT_TRUE(std::filesystem::exists(dir + "/" + eye + "/" + file)) << mode << " " << file;
+    const ImageF samples = readImageF(dir + "/left/samples.exr");
+    for (float s : samples.data) EXPECT_EQ(s, 4.0f);  // 2 spp x 2 frames, inside the box
+    EXPECT_EQ(readImageRGBA8(dir + "/color.png").width, 48);
+  }
 }
 
 }  // namespace
