@@ -14,6 +14,8 @@ using Args = std::vector<std::string>;
 int runRender(const Args& args);
 int runInfo(const Args& args);
 int runExportScene(const Args& args);
+int runAb(const Args& args);
+int runReference(const Args& args);
 
 // A built-in scene name or a .gltf/.glb path; --env FILE replaces the environment.
 Scene loadSceneSpec(const std::string& spec);

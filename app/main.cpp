@@ -14,14 +14,18 @@ const char* const kUsage =
     "commands:\n"
     "  render        render a scene headless and write the images\n"
     "  info          print what a scene contains and what the renderer will use\n"
-    "  export-scene  write a built-in scene as glTF 2.0\n";
+    "  export-scene  write a built-in scene as glTF 2.0\n"
+    "  ab            hybrid vs pure path tracing against a converged reference\n"
+    "  reference     render or extend the cached converged reference of a scene\n";
 
 using Command = int (*)(const photovr::app::Args&);
 
 int dispatch(int argc, char** argv) {
   const std::map<std::string, Command> commands = {{"render", photovr::app::runRender},
                                                    {"info", photovr::app::runInfo},
-                                                   {"export-scene", photovr::app::runExportScene}};
+                                                   {"export-scene", photovr::app::runExportScene},
+                                                   {"ab", photovr::app::runAb},
+                                                   {"reference", photovr::app::runReference}};
   if (argc < 2) {
     std::cerr << kUsage;
     return 2;

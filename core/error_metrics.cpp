@@ -1,0 +1,45 @@
+#include "core/error_metrics.h"
+
+#include <cmath>
+
+#include "core/image_io.h"
+#include "core/tonemap.h"
+
+namespace photovr {
+
+float relMsePixel(const glm::vec3& x, const glm::vec3& r) {
+  float sum = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    const float d = x[k] - r[k];
+    sum += d * d / (r[k] * r[k] + kRelMseEpsilon);
+  }
+  return sum / 3.0f;
+}
+
+std::vector<float> relMseMap(const std::vector<glm::vec3>& image,
+                             const std::vector<glm::vec3>& reference) {
+  std::vector<float> map(image.size());
+  for (size_t i = 0; i < image.size(); ++i) map[i] = relMsePixel(image[i], reference[i]);
+  return map;
+}
+
+double relMse(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& reference) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.size(); ++i) sum += relMsePixel(image[i], reference[i]);
+  return image.empty() ? 0.0 : sum / double(image.size());
+}
+
+double psnrDisplay(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& reference,
+                   float exposure) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.size(); ++i) {
+    const glm::vec3 a = glm::vec3(displayColor(image[i], exposure)) / 255.0f;
+    const glm::vec3 b = glm::vec3(displayColor(reference[i], exposure)) / 255.0f;
+    const glm::vec3 d = a - b;
+    sum += glm::dot(d, d) / 3.0;
+  }
+  const double mse = image.empty() ? 0.0 : sum / double(image.size());
+  return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 99.0;  // 99 dB stands for identical
+}
+
+}  // namespace photovr
