@@ -208,7 +208,7 @@ TEST(BuiltinCornell, EveryRayFromInsideHitsSomething) {
 }
 
 TEST(BuiltinCornell, CameraIsInsideNearTheFrontLookingAtTheBack) {
-  const Camera& c = makeBuiltinScene("cornell").cameras[0];
+  const Camera c = makeBuiltinScene("cornell").cameras[0];  // a copy: the scene is a temporary
   EXPECT_LT(glm::abs(c.position.x), 1.0f);
   EXPECT_GT(c.position.y, 0.0f);
   EXPECT_LT(c.position.y, 2.0f);

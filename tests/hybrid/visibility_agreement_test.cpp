@@ -79,7 +79,7 @@ TEST_P(VisibilityAgreement, RasterAndEmbreeSeeTheSameTriangles) {
     // cutout edges move with the mip level (bounded to 0.5 % of the image).
     EXPECT_LE(a.other, std::string(GetParam()) == "atrium" ? a.pixels / 200 : 0u)
         << GetParam() << " eye " << e;
-    EXPECT_GT(a.hits, a.pixels / 2);
+    EXPECT_GT(a.hits, a.pixels / 4);  // the comparison covers geometry, not just sky
   }
 }
 
