@@ -76,6 +76,26 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+// A 4-frame sequence rendered both ways: sequential (synchronous read-back) and pipelined
+// (frame N + 1's G-buffer and PBO read-back queued before frame N is traced).
+struct PipelineTimes {
+  double sequentialMs = 0.0, pipelinedMs = 0.0, waitMs = 0.0;
+};
+
+PipelineTimes measurePipeline(HybridRenderer& renderer, const RenderRequest& r, int eyeCount) {
+  PipelineTimes p;
+  auto cameras = [&](uint32_t f) { return eyeCameras(r.view, r.width, r.height, f); };
+  for (int pipelined = 0; pipelined < 2; ++pipelined) {
+    HybridFrameTimes t;
+    const auto t0 = Clock::now();
+    renderer.renderSequence(
+        cameras, 4, eyeCount, pipelined == 1, [](uint32_t, std::array<EyeImage, 2>&) {}, &t);
+    (pipelined ? p.pipelinedMs : p.sequentialMs) = msSince(t0);
+    if (pipelined) p.waitMs = t.gbufferMs;
+  }
+  return p;
+}
+
 struct ModeResult {
   std::vector<EyeImage> eyes;
   double wallMs = 0.0, cpuMs = 0.0, primaryMs = 0.0;
@@ -144,10 +164,10 @@ HeatPanel panel(const char* label, const ModeResult& m, const Reference& ref, in
 }
 
 std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResult& pt,
-                        const Reference& ref) {
+                        const Reference& ref, const PipelineTimes& pipe) {
   const RenderRequest& r = a.render;
   const double equalError = pt.wallMs * (pt.relMse / std::max(hy.relMse, 1e-30)) / hy.wallMs;
-  char buf[4096];
+  char buf[8192];
   std::snprintf(
       buf, sizeof buf,
       "photovr ab: %s, %dx%d x %zu eyes, %d spp x %d frames, %d bounces; reference %d spp\n"
@@ -160,14 +180,17 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       "speed-up of hybrid over pt at equal spp:\n"
       "  wall-clock on this machine (Mesa rasterizes the G-buffer on the same CPU cores): %.2fx\n"
       "  tracer CPU time, GL excluded (as with a GPU running GL beside the CPU):        %.2fx\n"
-      "speed-up at equal error (wall-clock, from relMSE ~ 1/time): %.2fx\n",
+      "speed-up at equal error (wall-clock, from relMSE ~ 1/time): %.2fx\n"
+      "4-frame hybrid sequence: sequential %.0f ms; pipelined (PBO read-back, G-buffer of\n"
+      "  frame N+1 queued before tracing N) %.0f ms, of which %.0f ms waiting for GL\n",
       r.sceneSpec.c_str(), r.width, r.height, hy.eyes.size(), r.spp, r.frames, r.bounces,
       ref.samplesPerPixel, hy.relMse, hy.psnr, hy.wallMs, hy.cpuMs, hy.rays / hy.wallMs * 1e-3,
       pt.relMse, pt.psnr, pt.wallMs, pt.cpuMs, pt.rays / pt.wallMs * 1e-3, hy.stages.gbufferMs,
       hy.stages.readbackMs, hy.stages.rebuildMs, hy.stages.traceMs,
       (unsigned long long)hy.stages.outsideHits, pt.primaryMs, hy.stages.rebuildMs,
       hy.stages.rebuildMs < pt.primaryMs ? "rebuild is cheaper" : "rebuild is NOT cheaper",
-      pt.wallMs / hy.wallMs, pt.cpuMs / hy.cpuMs, equalError);
+      pt.wallMs / hy.wallMs, pt.cpuMs / hy.cpuMs, equalError, pipe.sequentialMs, pipe.pipelinedMs,
+      pipe.waitMs);
   return buf;
 }
 
@@ -192,6 +215,7 @@ int runAb(const Args& args) {
                           context->hasExtension("GL_ARB_shader_viewport_layer_array"), settings);
   ModeResult hy = runHybrid(renderer, r, eyeCount);
   ModeResult pt = runPathTraced(renderer.traceContext(), r, eyeCount);
+  const PipelineTimes pipe = measurePipeline(renderer, r, eyeCount);
   score(hy, ref, r.exposure);
   score(pt, ref, r.exposure);
   std::vector<const EyeImage*> hp, pp;
@@ -211,7 +235,7 @@ int runAb(const Args& args) {
              heatMapImage({panel("HYBRID RELMSE", hy, ref, r.width, r.height),
                            panel("PT RELMSE", pt, ref, r.width, r.height)},
                           1e-4f, 10.0f));
-  const std::string summary = summaryText(a, hy, pt, ref);
+  const std::string summary = summaryText(a, hy, pt, ref, pipe);
   std::ofstream(r.outDir + "/summary.txt") << summary;
   std::cout << summary << "wrote " << r.outDir
             << "/{hybrid,pt,reference,heatmap}.png and summary.txt\n";

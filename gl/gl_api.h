@@ -50,6 +50,12 @@
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                     \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                             \
   X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                           \
+  X(PFNGLBINDBUFFERPROC, BindBuffer)                                     \
+  X(PFNGLMAPNAMEDBUFFERRANGEPROC, MapNamedBufferRange)                   \
+  X(PFNGLUNMAPNAMEDBUFFERPROC, UnmapNamedBuffer)                         \
+  X(PFNGLFENCESYNCPROC, FenceSync)                                       \
+  X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync)                             \
+  X(PFNGLDELETESYNCPROC, DeleteSync)                                     \
   X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                     \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                     \
   X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)           \

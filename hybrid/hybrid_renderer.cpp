@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "gl/gbuffer_readback.h"
+
 namespace photovr {
 namespace {
 
@@ -22,24 +24,19 @@ HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, bool hasLayerEx
       lights_(scene),
       ctx_{scene, embree_, lights_, settings} {}
 
-std::array<EyeImage, 2> HybridRenderer::render(
-    const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame, HybridFrameTimes* times,
-    const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
+void HybridRenderer::drawGBuffer(const std::array<EyeCamera, 2>& eyes) {
   std::array<glm::mat4, 2> vp;
   for (int e = 0; e < 2; ++e) vp[e] = eyes[e].unjitteredProjection() * eyes[e].view();
-  const auto t0 = Clock::now();
   pass_.render(gpu_, eyes, hasPrevious_ ? previousViewProjection_ : vp);
-  pass_.finish();
-  const auto t1 = Clock::now();
-  std::array<gl::GBufferImage, 2> g;
-  for (int e = 0; e < eyeCount; ++e) g[e] = pass_.read(e);
-  const auto t2 = Clock::now();
   previousViewProjection_ = vp;
   hasPrevious_ = true;
+}
+
+std::array<EyeImage, 2> HybridRenderer::trace(
+    const std::array<gl::GBufferImage, 2>& g, const std::array<EyeCamera, 2>& eyes, int eyeCount,
+    uint32_t frame, HybridFrameTimes& t,
+    const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
   std::array<EyeImage, 2> out;
-  HybridFrameTimes t;
-  t.gbufferMs = msBetween(t0, t1);
-  t.readbackMs = msBetween(t1, t2);
   for (int e = 0; e < eyeCount; ++e) {
     HybridEyeStats s;
     out[e] = traceFromGBuffer(ctx_, g[e], eyes[e], uint32_t(e), frame, sppMaps[e], &s);
@@ -49,8 +46,61 @@ std::array<EyeImage, 2> HybridRenderer::render(
     t.rays += out[e].rays;
     t.rejectedSamples += out[e].rejectedSamples;
   }
+  return out;
+}
+
+std::array<EyeImage, 2> HybridRenderer::render(
+    const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame, HybridFrameTimes* times,
+    const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
+  const auto t0 = Clock::now();
+  drawGBuffer(eyes);
+  pass_.finish();
+  const auto t1 = Clock::now();
+  std::array<gl::GBufferImage, 2> g;
+  for (int e = 0; e < eyeCount; ++e) g[e] = pass_.read(e);
+  const auto t2 = Clock::now();
+  HybridFrameTimes t;
+  t.gbufferMs = msBetween(t0, t1);
+  t.readbackMs = msBetween(t1, t2);
+  auto out = trace(g, eyes, eyeCount, frame, t, sppMaps);
   if (times) *times = t;
   return out;
+}
+
+void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eyeCount,
+                                    bool pipelined, const FrameFn& onFrame,
+                                    HybridFrameTimes* totals) {
+  HybridFrameTimes sum;
+  if (!pipelined) {
+    for (int f = 0; f < frames; ++f) {
+      HybridFrameTimes t;
+      auto images = render(cameras(uint32_t(f)), eyeCount, uint32_t(f), &t);
+      onFrame(uint32_t(f), images);
+      sum.gbufferMs += t.gbufferMs, sum.readbackMs += t.readbackMs;
+      sum.rebuildMs += t.rebuildMs, sum.traceMs += t.traceMs;
+    }
+  } else {
+    // Stage times overlap here; gbufferMs counts only the time the CPU waited for GL.
+    gl::GBufferReadback readback[2] = {gl::GBufferReadback(pass_), gl::GBufferReadback(pass_)};
+    std::array<EyeCamera, 2> current = cameras(0);
+    drawGBuffer(current);
+    readback[0].start(eyeCount);
+    for (int f = 0; f < frames; ++f) {
+      std::array<EyeCamera, 2> next;
+      if (f + 1 < frames) {
+        next = cameras(uint32_t(f + 1));
+        drawGBuffer(next);
+        readback[(f + 1) % 2].start(eyeCount);
+      }
+      const auto t0 = Clock::now();
+      const auto g = readback[f % 2].finish();
+      sum.gbufferMs += msBetween(t0, Clock::now());
+      auto images = trace(g, current, eyeCount, uint32_t(f), sum, {});
+      onFrame(uint32_t(f), images);
+      current = next;
+    }
+  }
+  if (totals) *totals = sum;
 }
 
 }  // namespace photovr

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 
 #include "core/camera.h"
@@ -37,6 +38,14 @@ class HybridRenderer {
                                  HybridFrameTimes* times,
                                  const std::array<const std::vector<uint16_t>*, 2>& sppMaps = {});
 
+  // A sequence of frames. Pipelined: the G-buffer of frame N + 1 is drawn and its read-back
+  // (pixel buffer objects) queued before frame N is traced, so GL work overlaps tracing;
+  // sequential: each frame's G-buffer is drawn and read back synchronously, then traced.
+  using CameraFn = std::function<std::array<EyeCamera, 2>(uint32_t frame)>;
+  using FrameFn = std::function<void(uint32_t frame, std::array<EyeImage, 2>& images)>;
+  void renderSequence(const CameraFn& cameras, int frames, int eyeCount, bool pipelined,
+                      const FrameFn& onFrame, HybridFrameTimes* totals);
+
   const gl::GBufferPass& gbuffer() const { return pass_; }
   const EmbreeScene& embree() const { return embree_; }
   const TraceContext& traceContext() const { return ctx_; }
@@ -48,6 +57,12 @@ class HybridRenderer {
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;
+  void drawGBuffer(const std::array<EyeCamera, 2>& eyes);
+  std::array<EyeImage, 2> trace(const std::array<gl::GBufferImage, 2>& g,
+                                const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame,
+                                HybridFrameTimes& t,
+                                const std::array<const std::vector<uint16_t>*, 2>& sppMaps);
+
   std::array<glm::mat4, 2> previousViewProjection_{};
   bool hasPrevious_ = false;
 };

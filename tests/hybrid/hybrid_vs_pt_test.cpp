@@ -265,3 +265,47 @@ TEST(HybridGrazing, PlaneLitAtGrazingAnglesMatchesTheAnalyticAnswer) {
 
 }  // namespace
 }  // namespace photovr
+
+namespace photovr {
+namespace {
+
+TEST(HybridPipeline, PipelinedReadBackGivesTheSameFramesAsSequential) {
+  const Scene scene = mirrorScene();
+  testing::osmesaContext();
+  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  std::vector<std::vector<glm::vec3>> frames[2];
+  for (int pipelined = 0; pipelined < 2; ++pipelined)
+    renderer.renderSequence(
+        [&](uint32_t f) {
+          EyeCamera c = monoCamera(scene, f);
+          c.pose.position.x += 0.01f * float(f);  // a moving camera: motion vectors change
+          return std::array<EyeCamera, 2>{c, c};
+        },
+        3, 1, pipelined == 1,
+        [&](uint32_t, std::array<EyeImage, 2>& images) {
+          frames[pipelined].push_back(images[0].color);
+        },
+        nullptr);
+  ASSERT_EQ(frames[0].size(), 3u);
+  EXPECT_EQ(frames[0], frames[1]);  // same G-buffers, same seeds: bit-identical
+}
+
+TEST(HybridSampleMap, ZeroSamplePixelsAreNotTracedAndCountsFollowTheMap) {
+  const Scene scene = mirrorScene();
+  testing::osmesaContext();
+  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  std::vector<uint16_t> map(size_t(kWidth) * kHeight);
+  for (size_t i = 0; i < map.size(); ++i) map[i] = uint16_t(i % 3);  // 0, 1, 2, 0, ...
+  const EyeCamera cam = monoCamera(scene, 0);
+  const EyeImage img = renderer.render({cam, cam}, 1, 0, nullptr, {&map, nullptr})[0];
+  for (size_t i = 0; i < map.size(); ++i) {
+    if (img.depth[i] == 0.0f) continue;  // background: the environment, never traced
+    EXPECT_EQ(img.samples[i], map[i]) << i;
+    if (map[i] == 0) {
+      EXPECT_EQ(img.color[i], glm::vec3(0.0f)) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace photovr
