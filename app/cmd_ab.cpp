@@ -129,7 +129,7 @@ ModeResult runPathTraced(const TraceContext& ctx, const RenderRequest& r, int ey
   for (int f = 0; f < r.frames; ++f) {
     const auto eyes = eyeCameras(r.view, r.width, r.height, uint32_t(f));
     for (int e = 0; e < eyeCount; ++e) {
-      m.primaryMs += timePrimaryRays(ctx.embree, eyes[e]).milliseconds;
+      m.primaryMs += timePrimaryRays(ctx.scene, ctx.embree, eyes[e]).milliseconds;
       const auto t0 = Clock::now();
       const EyeImage img = renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(f));
       m.wallMs += msSince(t0);
@@ -176,7 +176,8 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       "pt            %10.3e  %8.2f  %8.1f  %12.1f  %7.2f\n"
       "hybrid stages (ms): G-buffer %.1f, read-back %.1f, hit rebuild %.1f, trace %.1f;"
       " %llu shared-edge hits clamped\n"
-      "pt primary-ray traversal alone: %.1f ms; hybrid hit rebuild: %.1f ms (%s)\n"
+      "primary hits, pt (traversal + surface): %.1f ms; hybrid (record -> exact hit + surface):"
+      " %.1f ms (%s)\n"
       "speed-up of hybrid over pt at equal spp:\n"
       "  wall-clock on this machine (Mesa rasterizes the G-buffer on the same CPU cores): %.2fx\n"
       "  tracer CPU time, GL excluded (as with a GPU running GL beside the CPU):        %.2fx\n"

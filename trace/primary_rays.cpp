@@ -9,7 +9,8 @@
 
 namespace photovr {
 
-PrimaryRayStats timePrimaryRays(const EmbreeScene& embree, const EyeCamera& cam) {
+PrimaryRayStats timePrimaryRays(const Scene& scene, const EmbreeScene& embree,
+                                const EyeCamera& cam) {
   std::atomic<uint64_t> hits{0};
   const auto t0 = std::chrono::steady_clock::now();
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, 16, 0, cam.width, 16),
@@ -17,11 +18,15 @@ PrimaryRayStats timePrimaryRays(const EmbreeScene& embree, const EyeCamera& cam)
                       enableFlushToZero();
                       uint64_t local = 0;
                       for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                        for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-                          local += embree
-                                       .intersect(cam.pose.position, cam.pixelRay(x, y), 0.0f,
-                                                  std::numeric_limits<float>::infinity())
-                                       .hit;
+                        for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                          const glm::vec3 dir = cam.pixelRay(x, y);
+                          const TraceHit h = embree.intersect(
+                              cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
+                          if (!h.hit) continue;
+                          ++local;
+                          // An out-of-line call (no LTO): the compiler cannot drop it.
+                          surfaceAt(scene, h.instance, h.triangle, h.b1, h.b2, dir);
+                        }
                       hits += local;
                     });
   PrimaryRayStats s;

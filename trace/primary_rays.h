@@ -1,8 +1,11 @@
-// Primary rays alone, timed: the traversal work the hybrid replaces with the G-buffer.
+// Primary hits alone, timed: the work the hybrid replaces with the G-buffer — traversal
+// plus building each hit's SurfaceHit, which is what the hybrid's hit rebuild produces too,
+// so the two stages compare like for like.
 #pragma once
 
 #include "core/camera.h"
 #include "trace/embree_scene.h"
+#include "trace/surface.h"
 
 namespace photovr {
 
@@ -12,7 +15,8 @@ struct PrimaryRayStats {
 };
 
 // Casts one closest-hit ray per pixel through the camera's jittered samples, in parallel
-// over the same tiles the path tracer uses, and discards the hits.
-PrimaryRayStats timePrimaryRays(const EmbreeScene& embree, const EyeCamera& camera);
+// over the same tiles the path tracer uses, builds the surface hit, and discards it.
+PrimaryRayStats timePrimaryRays(const Scene& scene, const EmbreeScene& embree,
+                                const EyeCamera& camera);
 
 }  // namespace photovr
