@@ -17,11 +17,7 @@ namespace photovr {
 namespace {
 
 Material material(glm::vec3 color, float metallic, float roughness) {
-  Material m;
-  m.baseColorFactor = glm::vec4(color, 1.0f);
-  m.metallicFactor = metallic;
-  m.roughnessFactor = roughness;
-  return m;
+  return testing::plainMaterial(color, metallic, roughness);
 }
 
 void add(Scene& s, Mesh mesh, const Material& m) {
