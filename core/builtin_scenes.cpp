@@ -192,7 +192,8 @@ Scene makeSpheres() {
                   name);
     }
   const int ground = addMaterial(scene, dielectric("ground", glm::vec3(0.5f), 0.9f));
-  addStatic(scene, makeQuad({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}), "ground", ground);
+  // 200 m of ground: the sky's dark lower hemisphere stays below the horizon line.
+  addStatic(scene, makeQuad({-100, 0, 100}, {200, 0, 0}, {0, 0, -200}), "ground", ground);
   scene.environment = clearSky();
   scene.lights.push_back(sunLight(scene.environment));
   // From 4.2 m the 5 x 4.8 m grid (centre y = 2.6) fills ~60 % of the DK2's 2.15-tangent
