@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 SCENE ?= atrium
 OUT ?= out/$(SCENE)
 
-.PHONY: run test setup build asan format clean
+.PHONY: run test setup build bench asan format clean
 
 run: build
 	./$(BUILD)/photovr render --scene $(SCENE) --out $(OUT)
@@ -18,6 +18,11 @@ setup:
 build: setup
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build $(BUILD) -j$(JOBS)
+
+# Tracer vs raw Embree throughput on the built-in scenes (bench/bench_trace.cpp); writes
+# out/bench/bench_trace.csv. Not a test: its numbers depend on the machine and its load.
+bench: build
+	./$(BUILD)/bench/photovr_bench_trace --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build and the whole test suite under it.
 asan: setup

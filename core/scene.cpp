@@ -7,7 +7,10 @@ namespace photovr {
 glm::mat3 TextureTransform::matrix() const {
   // KHR_texture_transform: translation * rotation * scale, rotation as the extension's
   // reference implementation writes it (counter-clockwise, uv space with v down).
-  const float c = std::cos(rotation), s = std::sin(rotation);
+  // Unrotated transforms (the common scale/offset case) skip cos/sin: the tracer calls this
+  // per texture sample (sincos was 1 % of an atrium render). cos(0) = 1, sin(0) = 0 exactly.
+  const float c = rotation == 0.0f ? 1.0f : std::cos(rotation);
+  const float s = rotation == 0.0f ? 0.0f : std::sin(rotation);
   const glm::mat3 t(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
   const glm::mat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
   const glm::mat3 sc(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);

@@ -3,8 +3,11 @@
 // instances them). Embree types stay inside trace/.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -29,6 +32,42 @@ struct EmbreeStats {
   double buildMilliseconds = 0.0;
 };
 
+// One ray as the tracer handed it to Embree, for replaying the same ray mix through raw
+// rtcIntersect1 / rtcOccluded1 (bench/).
+struct RecordedRay {
+  enum class Kind : uint8_t { Intersect, Occluded };
+  glm::vec3 origin{0.0f};
+  float tnear = 0.0f;
+  glm::vec3 dir{0.0f};
+  float tfar = 0.0f;
+  Kind kind = Kind::Intersect;
+};
+
+// Collects every ray an EmbreeScene traces while attached to it, into one buffer per thread
+// (so recording is safe inside the tracer's parallel tiles). With one thread the rays come
+// back in exactly the order they were cast.
+class RayRecorder {
+ public:
+  RayRecorder();
+  ~RayRecorder();
+  RayRecorder(const RayRecorder&) = delete;
+  RayRecorder& operator=(const RayRecorder&) = delete;
+
+  void record(const RecordedRay& ray);
+  // Everything recorded so far, thread by thread, each in its own order; clears the buffers.
+  std::vector<RecordedRay> take();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// What a replay found, so that its work cannot be skipped and can be checked.
+struct ReplayCounts {
+  uint64_t intersectRays = 0, hits = 0;
+  uint64_t occludedRays = 0, blocked = 0;
+};
+
 class EmbreeScene {
  public:
   // Keeps a reference to 'scene': it must outlive this object.
@@ -47,12 +86,22 @@ class EmbreeScene {
   // (platform.md), instead of rebuilding any mesh BVH.
   void updateInstanceTransforms();
 
+  // While set, intersect() and occluded() append each ray to 'recorder' (null: off; the
+  // cost when off is one predictable branch per ray). Not to be changed during a render.
+  void setRecorder(RayRecorder* recorder) { recorder_ = recorder; }
+
+  // Traces 'count' recorded rays with bare rtcIntersect1 / rtcOccluded1 calls on this
+  // scene (same BVHs, same filters), with no recording and no TraceHit conversion: the
+  // traversal cost alone. Thread-safe; the caller sets flush-to-zero as tracing threads do.
+  ReplayCounts replay(const RecordedRay* rays, size_t count) const;
+
   const EmbreeStats& stats() const { return stats_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   EmbreeStats stats_;
+  RayRecorder* recorder_ = nullptr;
 };
 
 // Flush-to-zero and denormals-are-zero for the calling thread (Embree's advice for speed;

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -49,15 +48,21 @@ class LightSet {
   struct AreaTriangle {
     uint32_t instance, triangle;
     glm::vec3 p0, e1, e2;  // world
+    glm::vec3 normal;      // world, unit: unitGeometricNormal(e1, e2), as surfaceAt's
     float area;
   };
+  static constexpr uint32_t kNoLight = ~0u;
+  // Index into triangles_ of (instance, triangle), or kNoLight: a flat table instead of a
+  // hash map, since pdfArea() runs for every BSDF ray that lands on an emitter.
+  uint32_t lightIndex(uint32_t instance, uint32_t triangle) const;
   LightSample samplePunctual(const Light& light, const glm::vec3& point) const;
   LightSample sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u) const;
 
   const Scene& scene_;
   std::vector<const Light*> punctual_;
   std::vector<AreaTriangle> triangles_;
-  std::unordered_map<uint64_t, uint32_t> triangleIndex_;  // (instance << 32 | triangle) -> index
+  std::vector<uint32_t> instanceSlots_;  // per instance: first entry in triangleSlots_, or kNoLight
+  std::vector<uint32_t> triangleSlots_;  // per triangle of emissive instances: light or kNoLight
   EnvironmentSampler environment_;
   Distribution1D selection_;  // over punctual_, then triangles_, then the environment
 };

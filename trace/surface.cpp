@@ -19,14 +19,27 @@ T lerp3(const std::vector<T>& a, const uint32_t* idx, float b0, float b1, float 
   return b0 * a[idx[0]] + b1 * a[idx[1]] + b2 * a[idx[2]];
 }
 
+// Zero for an absent attribute.
+template <typename T>
+T attributeAt(const std::vector<T>& a, const uint32_t* idx, float b1, float b2) {
+  return a.empty() ? T(0.0f) : lerp3(a, idx, 1.0f - b1 - b2, b1, b2);
+}
+
 Interpolated interpolate(const Mesh& m, const uint32_t* idx, float b1, float b2) {
-  const float b0 = 1.0f - b1 - b2;
   Interpolated r;
-  if (!m.normals.empty()) r.normal = lerp3(m.normals, idx, b0, b1, b2);
-  if (!m.tangents.empty()) r.tangent = lerp3(m.tangents, idx, b0, b1, b2);
-  if (!m.uv0.empty()) r.uv0 = lerp3(m.uv0, idx, b0, b1, b2);
-  if (!m.uv1.empty()) r.uv1 = lerp3(m.uv1, idx, b0, b1, b2);
+  r.normal = attributeAt(m.normals, idx, b1, b2);
+  r.tangent = attributeAt(m.tangents, idx, b1, b2);
+  r.uv0 = attributeAt(m.uv0, idx, b1, b2);
+  r.uv1 = attributeAt(m.uv1, idx, b1, b2);
   return r;
+}
+
+// glTF emission is one-sided for single-sided materials, two-sided for double-sided ones.
+glm::vec3 emission(const Scene& scene, const Material& mat, glm::vec2 uv0, glm::vec2 uv1,
+                   bool frontFace) {
+  if (!frontFace && !mat.doubleSided) return glm::vec3(0.0f);
+  return mat.emission() *
+         glm::vec3(sampleSlot(scene, mat.emissiveTexture, uv0, uv1, true, glm::vec4(1.0f)));
 }
 
 glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
@@ -85,7 +98,7 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   // (pbrt-v4 §6.8.5's bound for this form is gamma(7) * sum |terms|; 8 eps is a safe cap).
   const glm::vec3 mag = glm::abs(p0) + glm::abs(b1 * (p1 - p0)) + glm::abs(b2 * (p2 - p0));
   h.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
-  glm::vec3 ng = safeNormalize(glm::cross(p1 - p0, p2 - p0), glm::vec3(0, 1, 0));
+  glm::vec3 ng = unitGeometricNormal(p1 - p0, p2 - p0);
   const Interpolated in = interpolate(mesh, idx, b1, b2);
   const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
   glm::vec3 ns = safeNormalize(normalToWorld * in.normal, ng);
@@ -98,10 +111,23 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   h.geometricNormal = ng;
   h.shadingNormal = ns;
   h.bsdf = materialAt(scene, mat, in);
-  if (h.frontFace || mat.doubleSided)
-    h.emission = mat.emission() * glm::vec3(sampleSlot(scene, mat.emissiveTexture, in.uv0, in.uv1,
-                                                       true, glm::vec4(1.0f)));
+  h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);
   return h;
+}
+
+glm::vec3 unitGeometricNormal(const glm::vec3& e1, const glm::vec3& e2) {
+  return safeNormalize(glm::cross(e1, e2), glm::vec3(0, 1, 0));
+}
+
+glm::vec3 emissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& geometricNormal, const glm::vec3& incoming) {
+  const Mesh& mesh = scene.meshes[scene.instances[instance].mesh];
+  const Material& mat = scene.materials[mesh.material];
+  const bool frontFace = glm::dot(geometricNormal, incoming) < 0.0f;
+  if (!mat.emissiveTexture.valid()) return emission(scene, mat, {}, {}, frontFace);
+  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
+  return emission(scene, mat, attributeAt(mesh.uv0, idx, b1, b2),
+                  attributeAt(mesh.uv1, idx, b1, b2), frontFace);
 }
 
 glm::vec3 emittedRadiance(const Scene&, const SurfaceHit& hit) {

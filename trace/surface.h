@@ -27,6 +27,15 @@ struct SurfaceHit {
 SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
                      const glm::vec3& incoming);
 
+// Unit normal of the triangle with edges e1 = p1 - p0, e2 = p2 - p0 (counter-clockwise
+// side), +Y for a degenerate one: the geometric normal surfaceAt() starts from.
+glm::vec3 unitGeometricNormal(const glm::vec3& e1, const glm::vec3& e2);
+
+// surfaceAt(...).emission without the rest of the surface (light sampling needs only this):
+// 'geometricNormal' is unitGeometricNormal() of the triangle's world edges.
+glm::vec3 emissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& geometricNormal, const glm::vec3& incoming);
+
 // Origin for a ray leaving 'hit' along 'dir': the hit moved off the surface along the
 // geometric normal by its error bound (Wachter & Binder, "A Fast and Robust Method for
 // Avoiding Self-Intersection", Ray Tracing Gems ch. 6, 2019: integer-ulp offset far from

@@ -1,0 +1,277 @@
+// Tracer throughput next to raw Embree on the same rays (issue 3, "In bench/").
+//
+// For each built-in scene and thread count: render one eye with the path tracer and time
+// it (photovr rays/s = all rays it cast / render wall time), then replay exactly those rays
+// (recorded by a RayRecorder on an untimed render) through bare rtcIntersect1 /
+// rtcOccluded1 on the same Embree scene (EmbreeScene::replay) and time that. The ratio is
+// the share of the tracer's time that traversal alone would take; the rest is primary ray
+// setup, surface reconstruction, texture lookups, BSDF and light sampling. "raw nofl"
+// replays the same rays on the scene with every filter removed, pricing the any-hit filters.
+// Wall-clock numbers on a shared 2-core machine swing by +-30 %; compare runs with
+// `perf stat -e task-clock taskset -c 0 ... --render-only --scene S` (CPU time) instead.
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/builtin_scenes.h"
+#include "core/camera.h"
+#include "trace/path_tracer.h"
+
+namespace photovr {
+namespace {
+
+struct Options {
+  std::string outDir = "out/bench";  // /out/ is git-ignored
+  int width = 240, height = 270;     // a quarter of a DK2 eye per side: ~1 min for all rows
+  int spp = 4;
+  int repeats = 5;          // best of N timed runs: the least disturbed by the rest of the machine
+  std::string scene;        // one built-in scene only (for profiling); empty: all
+  bool renderOnly = false;  // no recording or replay: a profile then sees only the tracer
+};
+
+struct Row {
+  std::string scene;
+  int threads = 0;
+  uint64_t intersectRays = 0, occludedRays = 0;
+  double renderSeconds = 0, replaySeconds = 0, replayIntersectSeconds = 0,
+         replayOccludedSeconds = 0, replayUnfilteredSeconds = 0, buildMs = 0;
+  uint64_t imageHash = 0;  // FNV-1a of the colour buffer: optimisations must keep it
+
+  uint64_t rays() const { return intersectRays + occludedRays; }
+  double photovrMrays() const { return rays() / renderSeconds * 1e-6; }
+  double rawMrays() const { return rays() / replaySeconds * 1e-6; }
+  double rawIntersectMrays() const { return intersectRays / replayIntersectSeconds * 1e-6; }
+  double rawOccludedMrays() const { return occludedRays / replayOccludedSeconds * 1e-6; }
+  double rawUnfilteredMrays() const { return rays() / replayUnfilteredSeconds * 1e-6; }
+};
+
+double seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// Runs f and lowers 'best' to its wall time if it was faster.
+template <typename F>
+void timeBest(double& best, F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  best = std::min(best, seconds(t0));
+}
+
+uint64_t hashColors(const std::vector<glm::vec3>& c) {
+  uint64_t h = 1469598103934665603ull;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(c.data());
+  for (size_t i = 0; i < c.size() * sizeof(glm::vec3); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  return h;
+}
+
+// Replays in parallel chunks as the tracer's tiles run: consecutive rays (one pixel's paths,
+// then the next pixel's) stay on one thread, so coherence matches the render's.
+ReplayCounts replayAll(const EmbreeScene& embree, const std::vector<RecordedRay>& rays) {
+  constexpr size_t kChunk = 4096;  // ~ the rays of one 16 x 16 tile at 4 spp in cornell
+  std::vector<ReplayCounts> parts((rays.size() + kChunk - 1) / kChunk);
+  tbb::parallel_for(size_t(0), parts.size(), [&](size_t k) {
+    enableFlushToZero();
+    const size_t begin = k * kChunk, end = std::min(rays.size(), begin + kChunk);
+    parts[k] = embree.replay(rays.data() + begin, end - begin);
+  });
+  ReplayCounts total;
+  for (const ReplayCounts& p : parts) {
+    total.intersectRays += p.intersectRays, total.hits += p.hits;
+    total.occludedRays += p.occludedRays, total.blocked += p.blocked;
+  }
+  return total;
+}
+
+std::vector<RecordedRay> ofKind(const std::vector<RecordedRay>& rays, RecordedRay::Kind kind) {
+  std::vector<RecordedRay> out;
+  std::copy_if(rays.begin(), rays.end(), std::back_inserter(out),
+               [&](const RecordedRay& r) { return r.kind == kind; });
+  return out;
+}
+
+// The scene with every material double-sided and opaque: Embree then has no filter function
+// to call, so replaying the same rays on it prices the any-hit filters (back-face culling,
+// alpha mask). Its hits differ from the real scene's, so this is an estimate.
+Scene withoutFilters(Scene scene) {
+  for (Material& m : scene.materials) {
+    m.doubleSided = true;
+    m.alphaMode = AlphaMode::Opaque;
+  }
+  return scene;
+}
+
+// The recorded rays, split by kind, and the filter-free scene to replay them on.
+struct Replays {
+  std::vector<RecordedRay> all, intersect, occluded;
+  const EmbreeScene& embree;
+  Scene plainScene;
+  std::unique_ptr<EmbreeScene> unfiltered;
+
+  Replays(const Scene& scene, const EmbreeScene& e, std::vector<RecordedRay> rays)
+      : all(std::move(rays)),
+        intersect(ofKind(all, RecordedRay::Kind::Intersect)),
+        occluded(ofKind(all, RecordedRay::Kind::Occluded)),
+        embree(e),
+        plainScene(withoutFilters(scene)) {
+    if (!all.empty()) unfiltered = std::make_unique<EmbreeScene>(plainScene);
+  }
+};
+
+// Each repeat times the render and every replay once, back to back, and each keeps its best:
+// on a shared machine a busy spell then slows a render and its replays alike.
+template <typename Render>
+void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
+  row.renderSeconds = row.replaySeconds = row.replayIntersectSeconds = row.replayOccludedSeconds =
+      row.replayUnfilteredSeconds = 1e30;
+  for (int k = 0; k < repeats; ++k) {
+    timeBest(row.renderSeconds, render);
+    if (r.all.empty()) continue;
+    timeBest(row.replaySeconds, [&] { replayAll(r.embree, r.all); });
+    timeBest(row.replayIntersectSeconds, [&] { replayAll(r.embree, r.intersect); });
+    timeBest(row.replayOccludedSeconds, [&] { replayAll(r.embree, r.occluded); });
+    timeBest(row.replayUnfilteredSeconds, [&] { replayAll(*r.unfiltered, r.all); });
+  }
+}
+
+Row measure(const std::string& name, const Scene& scene, int threads, const Options& opt) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  Row row{name, threads};
+  EmbreeScene embree(scene);
+  row.buildMs = embree.stats().buildMilliseconds;
+  const LightSet lights(scene);
+  TraceSettings settings;
+  settings.samplesPerPixel = opt.spp;
+  const TraceContext ctx{scene, embree, lights, settings};
+  StereoRig rig;
+  rig.head = poseOf(scene.cameras.at(0));
+  const EyeCamera cam = rig.eye(Eye::Left, opt.width, opt.height, haltonJitter(0));
+
+  RayRecorder recorder;  // untimed render: records the rays and warms the caches
+  embree.setRecorder(opt.renderOnly ? nullptr : &recorder);
+  const EyeImage img = renderPathTraced(ctx, cam, 0, 0);
+  embree.setRecorder(nullptr);
+  row.imageHash = hashColors(img.color);
+  const Replays replays(scene, embree, recorder.take());
+  if (!opt.renderOnly && replays.all.size() != img.rays)
+    std::fprintf(stderr, "%s: recorded %zu rays, the tracer counted %llu\n", name.c_str(),
+                 replays.all.size(), static_cast<unsigned long long>(img.rays));
+  row.intersectRays = opt.renderOnly ? img.rays : replays.intersect.size();
+  row.occludedRays = opt.renderOnly ? 0 : replays.occluded.size();
+  timeAll(
+      row, [&] { renderPathTraced(ctx, cam, 0, 0); }, replays, opt.repeats);
+  return row;
+}
+
+void printRow(const Row& r) {
+  std::printf("%-8s %3d %9.2f %9.2f %9.2f %9.2f %9.2f %7.3f %9llu %8.1f %016llx\n", r.scene.c_str(),
+              r.threads, r.photovrMrays(), r.rawMrays(), r.rawIntersectMrays(),
+              r.rawOccludedMrays(), r.rawUnfilteredMrays(), r.photovrMrays() / r.rawMrays(),
+              static_cast<unsigned long long>(r.rays()), r.buildMs,
+              static_cast<unsigned long long>(r.imageHash));
+  std::fflush(stdout);
+}
+
+void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
+  std::ofstream out(file);
+  out << "scene,threads,rays,intersect_rays,occluded_rays,photovr_mrays_s,raw_mrays_s,"
+         "raw_intersect_mrays_s,raw_occluded_mrays_s,raw_unfiltered_mrays_s,ratio,render_ms,replay_"
+         "ms,bvh_build_ms,"
+         "image_hash\n";
+  for (const Row& r : rows) {
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.imageHash));
+    out << r.scene << ',' << r.threads << ',' << r.rays() << ',' << r.intersectRays << ','
+        << r.occludedRays << ',' << r.photovrMrays() << ',' << r.rawMrays() << ','
+        << r.rawIntersectMrays() << ',' << r.rawOccludedMrays() << ',' << r.rawUnfilteredMrays()
+        << ',' << r.photovrMrays() / r.rawMrays() << ',' << r.renderSeconds * 1e3 << ','
+        << r.replaySeconds * 1e3 << ',' << r.buildMs << ',' << hash << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+int intArg(const char* flag, const char* value) {
+  if (!value) throw std::runtime_error(std::string(flag) + " needs a value");
+  const int v = std::atoi(value);
+  if (v <= 0) throw std::runtime_error(std::string(flag) + " wants a positive integer");
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (a == "--out" && next)
+      o.outDir = next;
+    else if (a == "--width")
+      o.width = intArg("--width", next);
+    else if (a == "--height")
+      o.height = intArg("--height", next);
+    else if (a == "--spp")
+      o.spp = intArg("--spp", next);
+    else if (a == "--repeats")
+      o.repeats = intArg("--repeats", next);
+    else if (a == "--scene" && next)
+      o.scene = next;
+    else if (a == "--render-only")
+      o.renderOnly = true, --i;  // a flag: no value to skip
+    else
+      throw std::runtime_error(
+          "usage: photovr_bench_trace [--out DIR] [--width W] "
+          "[--height H] [--spp N] [--repeats N] [--scene NAME] [--render-only]");
+    ++i;
+  }
+  return o;
+}
+
+int run(const Options& opt) {
+  const int all = tbb::info::default_concurrency();
+  std::printf(
+      "photovr_bench_trace: one eye %dx%d, %d spp, best of %d; raw = EmbreeScene::replay "
+      "(bare rtcIntersect1/rtcOccluded1)\n",
+      opt.width, opt.height, opt.spp, opt.repeats);
+  std::printf("%-8s %3s %9s %9s %9s %9s %9s %7s %9s %8s %s\n", "scene", "thr", "photovr", "raw",
+              "raw isec", "raw occl", "raw nofl", "ratio", "rays", "build ms", "image hash");
+  std::printf("%-8s %3s %9s %9s %9s %9s %9s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
+              "Mrays/s", "Mrays/s", "ph/raw");
+  std::vector<Row> rows;
+  for (const std::string& name : builtinSceneNames()) {
+    if (!opt.scene.empty() && name != opt.scene) continue;
+    const Scene scene = makeBuiltinScene(name);
+    for (int threads : {1, all}) {
+      rows.push_back(measure(name, scene, threads, opt));
+      printRow(rows.back());
+      if (all == 1) break;
+    }
+  }
+  std::filesystem::create_directories(opt.outDir);
+  const std::filesystem::path csv = std::filesystem::path(opt.outDir) / "bench_trace.csv";
+  writeCsv(csv, rows);
+  std::printf("wrote %s\n", csv.string().c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace photovr
+
+int main(int argc, char** argv) {
+  try {
+    return photovr::run(photovr::parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "photovr_bench_trace: %s\n", e.what());
+    return 1;
+  }
+}
