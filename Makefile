@@ -23,6 +23,7 @@ build: setup
 # out/bench/bench_trace.csv. Not a test: its numbers depend on the machine and its load.
 bench: build
 	./$(BUILD)/bench/photovr_bench_trace --out out/bench
+	./$(BUILD)/bench/photovr_bench_hybrid --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build and the whole test suite under it.
 asan: setup

@@ -48,6 +48,7 @@ class HybridRenderer {
 
   const gl::GBufferPass& gbuffer() const { return pass_; }
   const EmbreeScene& embree() const { return embree_; }
+  EmbreeScene& embree() { return embree_; }  // e.g. to attach a RayRecorder (bench/)
   const TraceContext& traceContext() const { return ctx_; }
 
  private:
