@@ -7,7 +7,7 @@
 #include <chrono>
 
 #include "hybrid/hit_rebuild.h"
-#include "trace/bsdf.h"
+#include "trace/pixel_estimate.h"
 
 namespace photovr {
 namespace {
@@ -19,61 +19,13 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-void allocate(EyeImage& img, int w, int h) {
-  const size_t n = size_t(w) * h;
-  img.width = w;
-  img.height = h;
-  for (auto* v : {&img.color, &img.albedo, &img.normal, &img.diffuse, &img.specular,
-                  &img.diffuseAlbedo, &img.specularAlbedo})
-    v->assign(n, glm::vec3(0.0f));
-  img.depth.assign(n, 0.0f);
-  img.samples.assign(n, 0);
-}
-
-glm::vec3 clampAlbedo(const glm::vec3& a) {
-  return glm::max(a, glm::vec3(kMinDemodulationAlbedo));
-}
-
-struct PixelJob {
-  const TraceContext& ctx;
-  const EyeCamera& cam;
-  uint32_t eye, frame;
-};
-
-// All samples of one rebuilt pixel.
-void tracePixel(const PixelJob& job, const RebuiltHit& hit, const glm::vec3& dir, size_t i,
-                uint32_t spp, EyeImage& img, uint64_t& rays, uint64_t& rejected) {
-  SampleCounters counters{uint32_t(i), job.eye, job.frame, 0, 0, job.ctx.settings.seed};
-  glm::vec3 diffuse(0.0f), specular(0.0f), albedo(0.0f);
-  for (uint32_t s = 0; s < spp; ++s) {
-    counters.sample = s;
-    const PathResult r = continuePath(job.ctx, hit.surface, -dir, counters);
-    diffuse += r.diffuse;
-    specular += r.specular;
-    albedo += r.albedo;
-    rays += r.rays;
-    rejected += r.rejected;
-  }
-  const float inv = 1.0f / float(spp);
-  const BsdfParams& p = hit.surface.bsdf;
-  const glm::vec3 dAlb = clampAlbedo(diffuseAlbedo(p));
-  const glm::vec3 sAlb = clampAlbedo(specularAlbedo(p, glm::dot(hit.surface.shadingNormal, -dir)));
-  img.color[i] = (diffuse + specular) * inv + hit.surface.emission;
-  img.diffuse[i] = diffuse * inv / dAlb;
-  img.specular[i] = specular * inv / sAlb;
-  img.diffuseAlbedo[i] = dAlb;
-  img.specularAlbedo[i] = sAlb;
-  img.albedo[i] = albedo * inv;
-  img.samples[i] = spp;
-}
-
 }  // namespace
 
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
                           uint32_t eye, uint32_t frame, const std::vector<uint16_t>* sppMap,
                           HybridEyeStats* stats) {
   EyeImage img;
-  allocate(img, g.width, g.height);
+  allocateEyeImage(img, g.width, g.height);
   const size_t n = size_t(g.width) * g.height;
   std::vector<RebuiltHit> hits(n);
   std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0};
@@ -93,7 +45,6 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     outside += out;
   });
   const auto t1 = Clock::now();
-  const PixelJob job{ctx, cam, eye, frame};
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
         enableFlushToZero();
@@ -109,7 +60,11 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           img.normal[i] = hits[i].surface.shadingNormal;
           img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
           if (spp == 0) continue;
-          tracePixel(job, hits[i], dir, i, spp, img, tileRays, tileRejected);
+          const SampleCounters counters{uint32_t(i), eye, frame, 0, 0, ctx.settings.seed};
+          const PixelEstimate est = estimatePixel(ctx, hits[i].surface, dir, counters, spp);
+          storePixel(img, i, hits[i].surface, dir, est);
+          tileRays += est.rays;
+          tileRejected += est.rejected;
           ++tileTraced;
         }
         rays += tileRays;

@@ -27,8 +27,5 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuff
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,
                           const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats);
 
-// Albedos are clamped to this before demodulating, and the same clamped value is stored,
-// so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
-constexpr float kMinDemodulationAlbedo = 1e-3f;
 
 }  // namespace photovr
