@@ -12,6 +12,7 @@
 #include "app/trace_output.h"
 #include "core/error.h"
 #include "core/error_metrics.h"
+#include "core/scene_transform.h"
 #include "core/heatmap.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/primary_rays.h"
@@ -69,6 +70,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);
+  r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
   return a;
 }
 

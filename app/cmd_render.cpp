@@ -5,6 +5,7 @@
 #include "app/options.h"
 #include "app/render_request.h"
 #include "core/error.h"
+#include "core/scene_transform.h"
 
 namespace photovr::app {
 
@@ -64,6 +65,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);
+  r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
   return r;
 }
 

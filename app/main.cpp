@@ -16,7 +16,8 @@ const char* const kUsage =
     "  info          print what a scene contains and what the renderer will use\n"
     "  export-scene  write a built-in scene as glTF 2.0\n"
     "  ab            hybrid vs pure path tracing against a converged reference\n"
-    "  reference     render or extend the cached converged reference of a scene\n";
+    "  reference     render or extend the cached converged reference of a scene\n"
+    "  stress        run the numerical stress suite and print its report\n";
 
 using Command = int (*)(const photovr::app::Args&);
 
@@ -25,7 +26,8 @@ int dispatch(int argc, char** argv) {
                                                    {"info", photovr::app::runInfo},
                                                    {"export-scene", photovr::app::runExportScene},
                                                    {"ab", photovr::app::runAb},
-                                                   {"reference", photovr::app::runReference}};
+                                                   {"reference", photovr::app::runReference},
+                                                   {"stress", photovr::app::runStress}};
   if (argc < 2) {
     std::cerr << kUsage;
     return 2;

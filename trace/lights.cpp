@@ -1,6 +1,9 @@
 #include "trace/lights.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <limits>
 
 #include "trace/surface.h"
@@ -42,6 +45,13 @@ float spotFalloff(const Light& l, const glm::vec3& toPoint) {
   return t * t;
 }
 
+// The triangle's vertices in a canonical (sorted) order, to recognise duplicates.
+std::array<float, 9> vertexKey(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  std::array<std::array<float, 3>, 3> v = {{{a.x, a.y, a.z}, {b.x, b.y, b.z}, {c.x, c.y, c.z}}};
+  std::sort(v.begin(), v.end());
+  return {v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0], v[2][1], v[2][2]};
+}
+
 }  // namespace
 
 LightSet::LightSet(const Scene& scene) : scene_(scene) {
@@ -53,6 +63,9 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
       weights.push_back(punctualPower(l, radius));
     }
   instanceSlots_.assign(scene.instances.size(), kNoLight);
+  // Coincident emitters (a triangle listed twice) are one light: a BSDF ray sees only one
+  // of them, so sampling both would count the emission twice (stress suite, "duplicate").
+  std::map<std::array<float, 9>, uint32_t> seen;
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     const Mesh& mesh = scene.meshes[inst.mesh];
@@ -67,7 +80,10 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
       const glm::vec3 e2 = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[2]], 1.0f)) - p0;
       const float area = 0.5f * glm::length(glm::cross(e1, e2));
       if (!(area > 0.0f)) continue;
-      triangleSlots_[instanceSlots_[i] + t] = uint32_t(triangles_.size());
+      const auto [it, fresh] =
+          seen.try_emplace(vertexKey(p0, p0 + e1, p0 + e2), uint32_t(triangles_.size()));
+      triangleSlots_[instanceSlots_[i] + t] = it->second;
+      if (!fresh) continue;
       triangles_.push_back({i, t, p0, e1, e2, unitGeometricNormal(e1, e2), area});
       weights.push_back(luminance(mat.emission()) * area * kPi * (mat.doubleSided ? 2.0f : 1.0f));
     }

@@ -34,16 +34,20 @@ BsdfLobes directLight(const TraceContext& ctx, const PathVertex& v, const Frame&
   const glm::vec3 woL = frame.toLocal(v.wo), wiL = frame.toLocal(ls.direction);
   const BsdfLobes f = evalBsdfLobes(v.hit.bsdf, woL, wiL);
   if (f.total() == glm::vec3(0.0f)) return {};
-  // The shadow ray starts at the offset origin, so its length is measured from there: the
-  // offset (up to ~1e-4 m on large triangles) may exceed the shortening.
+  // The shadow ray runs from the offset origin to the light point itself (not along the
+  // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
+  // otherwise carry the ray into the light's plane before the shortened end.
   const glm::vec3 origin = offsetRayOrigin(v.hit, ls.direction);
+  glm::vec3 shadowDir = ls.direction;
   float tfar = ls.distance;
   if (std::isfinite(ls.distance)) {
-    tfar = glm::dot(v.hit.position + ls.direction * ls.distance - origin, ls.direction);
+    const glm::vec3 toLight = v.hit.position + ls.direction * ls.distance - origin;
+    tfar = glm::length(toLight);
+    shadowDir = toLight / tfar;
     if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
   }
   ++rays;
-  if (ctx.embree.occluded(origin, ls.direction, 0.0f, tfar)) return {};
+  if (ctx.embree.occluded(origin, shadowDir, 0.0f, tfar)) return {};
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, pdfBsdf(v.hit.bsdf, woL, wiL));
   const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
   return {f.diffuse * scale, f.specular * scale};
