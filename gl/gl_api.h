@@ -89,7 +89,13 @@
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                     \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                     \
   X(PFNGLCLEARPROC, Clear)                                               \
-  X(PFNGLREADPIXELSPROC, ReadPixels)
+  X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
+  X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
+  X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                               \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                           \
+  X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                         \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                               \
+  X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)
 
 namespace photovr::gl::api {
 

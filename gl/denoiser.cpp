@@ -1,0 +1,293 @@
+#include "gl/denoiser.h"
+
+#include <cassert>
+#include <chrono>
+
+#include "core/error.h"
+#include "gl/gbuffer.h"
+#include "gl/gl_api.h"
+#include "shaders/denoise_shared.h"
+
+namespace photovr::gl {
+namespace {
+
+static_assert(sizeof(shared::DenoiseUniforms) == 5 * 16, "std140 DenoiseUniforms");
+constexpr int kMaxIterations = 5;
+
+GLuint makeArray(GLenum internal, int w, int h) {
+  GLuint t = 0;
+  api::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+  api::TextureStorage3D(t, 1, internal, w, h, 2);
+  api::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return t;
+}
+
+// Zeroed at creation so that nothing read before its first write is NaN garbage.
+GLuint makeCleared(GLenum internal, GLenum format, GLenum type, int w, int h) {
+  const GLuint t = makeArray(internal, w, h);
+  api::ClearTexImage(t, 0, format, type, nullptr);
+  return t;
+}
+
+template <typename T>
+std::vector<T> readLayer(GLuint tex, GLenum format, GLenum type, int w, int h, int layer) {
+  api::MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  std::vector<T> out(size_t(w) * h);
+  api::GetTextureSubImage(tex, 0, 0, 0, layer, w, h, 1, format, type,
+                          GLsizei(out.size() * sizeof(T)), out.data());
+  return out;
+}
+
+void bindImage(int unit, GLuint tex, GLenum format) {
+  api::BindImageTexture(GLuint(unit), tex, 0, GL_TRUE, 0, GL_WRITE_ONLY, format);
+}
+
+// Image stores of one pass become visible to the next pass's texel fetches and stores.
+void passBarrier() {
+  api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+}  // namespace
+
+DenoiseMode parseDenoiseMode(const std::string& name) {
+  if (name == "off") return DenoiseMode::Off;
+  if (name == "temporal") return DenoiseMode::Temporal;
+  if (name == "full") return DenoiseMode::Full;
+  throw UsageError("--denoise: unknown mode '" + name + "' (expected off, temporal or full)");
+}
+
+std::string denoiseModeName(DenoiseMode mode) {
+  switch (mode) {
+    case DenoiseMode::Off:
+      return "off";
+    case DenoiseMode::Temporal:
+      return "temporal";
+    case DenoiseMode::Full:
+      return "full";
+  }
+  return "?";
+}
+
+DenoiseGeometry denoiseGeometry(const GBufferPass& g) {
+  return {g.texture(GBufferTarget::Visibility), g.texture(GBufferTarget::Normal),
+          g.texture(GBufferTarget::Material), g.texture(GBufferTarget::Motion), g.depthTexture()};
+}
+
+Denoiser::Denoiser(int w, int h, const DenoiseParams& params)
+    : width_(w),
+      height_(h),
+      params_(params),
+      temporal_({{GL_COMPUTE_SHADER, "svgf_temporal.comp"}}, {}),
+      atrous_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {}),
+      atrousComposite_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {"SVGF_COMPOSITE 1"}),
+      composite_({{GL_COMPUTE_SHADER, "svgf_composite.comp"}}, {}) {
+  for (GLuint& t : inputs_) t = makeCleared(GL_RGB32F, GL_RGB, GL_FLOAT, w, h);
+  for (int i = 0; i < 2; ++i) {
+    geometry_[i] = makeCleared(GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, w, h);
+    aux_[i] = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
+    moments_[i] = makeCleared(GL_RGBA32F, GL_RGBA, GL_FLOAT, w, h);
+    for (GLuint* t : {&history_[i][0], &history_[i][1], &filterA_[i], &filterB_[i]})
+      *t = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
+  }
+  linear_ = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
+  display_ = makeCleared(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
+  depth_ = makeCleared(GL_R32F, GL_RED, GL_FLOAT, w, h);
+  api::CreateBuffers(1, &uniforms_);
+  api::NamedBufferStorage(uniforms_, sizeof(shared::DenoiseUniforms), nullptr,
+                          GL_DYNAMIC_STORAGE_BIT);
+}
+
+Denoiser::~Denoiser() {
+  api::DeleteTextures(InCount, inputs_);
+  for (int i = 0; i < 2; ++i) {
+    const GLuint t[] = {geometry_[i],   aux_[i],     moments_[i], history_[i][0],
+                        history_[i][1], filterA_[i], filterB_[i]};
+    api::DeleteTextures(GLsizei(std::size(t)), t);
+  }
+  const GLuint out[] = {linear_, display_, depth_};
+  api::DeleteTextures(3, out);
+  api::DeleteBuffers(1, &uniforms_);
+}
+
+template <typename F>
+void Denoiser::timed(const char* name, F&& pass) {
+  if (!timing_) return pass();
+  api::Finish();
+  const auto t0 = std::chrono::steady_clock::now();
+  pass();
+  api::Finish();
+  const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
+  timings_.push_back({name, ms.count()});
+}
+
+void Denoiser::run(const GBufferPass& gbuffer, const std::array<NoisyEye, 2>& eyes, int eyeCount,
+                   DenoiseMode mode, bool resetHistory) {
+  run(denoiseGeometry(gbuffer), eyes, eyeCount, mode, resetHistory);
+}
+
+void Denoiser::run(const DenoiseGeometry& g, const std::array<NoisyEye, 2>& eyes, int eyeCount,
+                   DenoiseMode mode, bool resetHistory) {
+  if (eyeCount < 1 || eyeCount > 2) throw UsageError("denoiser: eye count must be 1 or 2");
+  if (params_.iterations < 0 || params_.iterations > kMaxIterations)
+    throw UsageError("denoiser: iterations must be in [0, 5]");
+  eyeCount_ = eyeCount;
+  timings_.clear();
+  timed("upload", [&] {
+    uploadUniforms(resetHistory || !historyValid_);
+    upload(eyes, eyeCount);
+  });
+  if (mode == DenoiseMode::Off) {
+    const GLuint raw[2] = {inputs_[InDiffuse], inputs_[InSpecular]};
+    timed("composite", [&] { composite(raw, g); });
+    historyValid_ = false;  // 'off' does not maintain the history
+    return;
+  }
+  const int cur = frame_ & 1;
+  const bool filter = mode == DenoiseMode::Full && params_.iterations > 0;
+  // The colour history is the temporal output itself when nothing filters it (§4.1), the
+  // first a-trous iteration's output otherwise (§4.3, "feeds the history").
+  const GLuint* temporalOut = filter ? filterA_ : history_[cur];
+  timed("temporal", [&] { temporal(g, temporalOut[0], temporalOut[1]); });
+  stages_[0][0] = temporalOut[0];
+  stages_[0][1] = temporalOut[1];
+  if (!filter) {
+    timed("composite", [&] { composite(history_[cur], g); });
+  } else {
+    const GLuint* in = filterA_;
+    for (int i = 0; i < params_.iterations; ++i) {
+      const GLuint* out = i == 0 ? history_[cur] : (in == filterB_ ? filterA_ : filterB_);
+      timed(i + 1 == params_.iterations ? "atrous+composite" : "atrous",
+            [&] { atrous(i, in, out, g); });
+      stages_[i + 1][0] = out[0];
+      stages_[i + 1][1] = out[1];
+      in = out;
+    }
+  }
+  ++frame_;
+  historyValid_ = true;
+}
+
+void Denoiser::upload(const std::array<NoisyEye, 2>& eyes, int eyeCount) {
+  api::PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (int e = 0; e < eyeCount; ++e) {
+    const NoisyEye& n = eyes[e];
+    if (n.width != width_ || n.height != height_)
+      throw UsageError("denoiser: eye " + std::to_string(e) + " is " + std::to_string(n.width) +
+                       "x" + std::to_string(n.height) + ", expected " + std::to_string(width_) +
+                       "x" + std::to_string(height_));
+    const glm::vec3* data[InCount] = {n.diffuse, n.specular, n.diffuseAlbedo, n.specularAlbedo,
+                                      n.unfiltered};
+    for (int i = 0; i < InCount; ++i) {
+      if (!data[i])
+        throw UsageError("denoiser: an input image of eye " + std::to_string(e) + " is missing");
+      api::TextureSubImage3D(inputs_[i], 0, 0, 0, e, width_, height_, 1, GL_RGB, GL_FLOAT, data[i]);
+    }
+  }
+}
+
+void Denoiser::uploadUniforms(bool reset) {
+  const DenoiseParams& p = params_;
+  shared::DenoiseUniforms u{};
+  u.temporal = {p.colorAlpha, p.momentsAlpha, float(p.historyCap), float(p.temporalVarianceFrames)};
+  u.reject = {p.depthRejectFactor, p.depthRejectEpsilon, p.normalRejectDistance,
+              p.requireSameTriangle ? 1.0f : 0.0f};
+  u.edge = {p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance, p.sigmaLuminanceSpecular};
+  u.display = {p.exposure, p.specularFootprint, 0.0f, 0.0f};
+  u.frame = {width_, height_, reset ? 1 : 0, 0};
+  api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);
+  api::BindBufferBase(GL_UNIFORM_BUFFER, SVGF_UNIFORMS_BINDING, uniforms_);
+}
+
+void Denoiser::dispatch() const {
+  const GLuint gx = GLuint((width_ + SVGF_GROUP - 1) / SVGF_GROUP);
+  const GLuint gy = GLuint((height_ + SVGF_GROUP - 1) / SVGF_GROUP);
+  api::DispatchCompute(gx, gy, GLuint(eyeCount_));
+  passBarrier();
+}
+
+void Denoiser::temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned outSpecular) {
+  const int cur = frame_ & 1, prev = cur ^ 1;
+  temporal_.use();
+  api::BindTextureUnit(SVGF_T_IN_DIFFUSE, inputs_[InDiffuse]);
+  api::BindTextureUnit(SVGF_T_IN_SPECULAR, inputs_[InSpecular]);
+  api::BindTextureUnit(SVGF_T_VISIBILITY, g.visibility);
+  api::BindTextureUnit(SVGF_T_NORMAL, g.normal);
+  api::BindTextureUnit(SVGF_T_MATERIAL, g.material);
+  api::BindTextureUnit(SVGF_T_MOTION, g.motion);
+  api::BindTextureUnit(SVGF_T_DEPTH, g.depth);
+  api::BindTextureUnit(SVGF_T_PREV_GEOMETRY, geometry_[prev]);
+  api::BindTextureUnit(SVGF_T_PREV_AUX, aux_[prev]);
+  api::BindTextureUnit(SVGF_T_PREV_MOMENTS, moments_[prev]);
+  api::BindTextureUnit(SVGF_T_PREV_DIFFUSE, history_[prev][0]);
+  api::BindTextureUnit(SVGF_T_PREV_SPECULAR, history_[prev][1]);
+  bindImage(SVGF_I_DIFFUSE, outDiffuse, GL_RGBA16F);
+  bindImage(SVGF_I_SPECULAR, outSpecular, GL_RGBA16F);
+  bindImage(SVGF_I_GEOMETRY, geometry_[cur], GL_RGBA32UI);
+  bindImage(SVGF_I_AUX, aux_[cur], GL_RGBA16F);
+  bindImage(SVGF_I_MOMENTS, moments_[cur], GL_RGBA32F);
+  dispatch();
+}
+
+void Denoiser::bindCompositeOutputs(const DenoiseGeometry& g) const {
+  api::BindTextureUnit(SVGF_C_DIFFUSE_ALBEDO, inputs_[InDiffuseAlbedo]);
+  api::BindTextureUnit(SVGF_C_SPECULAR_ALBEDO, inputs_[InSpecularAlbedo]);
+  api::BindTextureUnit(SVGF_C_UNFILTERED, inputs_[InUnfiltered]);
+  api::BindTextureUnit(SVGF_C_DEPTH, g.depth);
+  bindImage(SVGF_I_LINEAR, linear_, GL_RGBA16F);
+  bindImage(SVGF_I_DISPLAY, display_, GL_RGBA8);
+  bindImage(SVGF_I_DEPTH, depth_, GL_R32F);
+}
+
+void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2],
+                      const DenoiseGeometry& g) {
+  const bool last = iteration + 1 == params_.iterations;
+  const Program& program = last ? atrousComposite_ : atrous_;
+  program.use();
+  program.set("uStep", 1 << iteration);
+  api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);
+  api::BindTextureUnit(SVGF_A_SPECULAR, in[1]);
+  api::BindTextureUnit(SVGF_A_GEOMETRY, geometry_[frame_ & 1]);
+  api::BindTextureUnit(SVGF_A_AUX, aux_[frame_ & 1]);
+  bindImage(SVGF_I_DIFFUSE, out[0], GL_RGBA16F);
+  bindImage(SVGF_I_SPECULAR, out[1], GL_RGBA16F);
+  if (last) bindCompositeOutputs(g);
+  dispatch();
+}
+
+void Denoiser::composite(const unsigned in[2], const DenoiseGeometry& g) {
+  composite_.use();
+  api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);
+  api::BindTextureUnit(SVGF_A_SPECULAR, in[1]);
+  bindCompositeOutputs(g);
+  dispatch();
+}
+
+std::vector<glm::u8vec4> Denoiser::readDisplay(int eye) const {
+  return readLayer<glm::u8vec4>(display_, GL_RGBA, GL_UNSIGNED_BYTE, width_, height_, eye);
+}
+
+std::vector<glm::vec3> Denoiser::readLinear(int eye) const {
+  api::PixelStorei(GL_PACK_ALIGNMENT, 4);
+  return readLayer<glm::vec3>(linear_, GL_RGB, GL_FLOAT, width_, height_, eye);
+}
+
+std::vector<float> Denoiser::readDepth(int eye) const {
+  return readLayer<float>(depth_, GL_RED, GL_FLOAT, width_, height_, eye);
+}
+
+std::vector<glm::vec4> Denoiser::readStage(int stage, bool specular, int eye) const {
+  assert(stage >= 0 && stage <= kMaxIterations);
+  return readLayer<glm::vec4>(stages_[stage][specular ? 1 : 0], GL_RGBA, GL_FLOAT, width_, height_,
+                              eye);
+}
+
+std::vector<glm::vec4> Denoiser::readMoments(int eye) const {
+  return readLayer<glm::vec4>(moments_[(frame_ - 1) & 1], GL_RGBA, GL_FLOAT, width_, height_, eye);
+}
+
+std::vector<glm::vec4> Denoiser::readAux(int eye) const {
+  return readLayer<glm::vec4>(aux_[(frame_ - 1) & 1], GL_RGBA, GL_FLOAT, width_, height_, eye);
+}
+
+}  // namespace photovr::gl

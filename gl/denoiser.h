@@ -1,0 +1,162 @@
+// Spatiotemporal variance-guided denoiser and compositor (issue 5; Schied et al.,
+// "Spatiotemporal Variance-Guided Filtering", HPG 2017 — "SVGF" below, sections and
+// equation numbers refer to it). Both eyes are processed together: every pass is one
+// compute dispatch over 2-layer array textures, layer = eye, each eye with its own history.
+//
+// Passes (all compute, 8x8 groups; see shaders/svgf_*.comp for what each reads/writes):
+//   upload     5 x RGB32F      noisy diffuse, noisy specular (both demodulated), albedos,
+//                              unfiltered radiance (32-bit: a plain copy, no conversion)
+//   temporal   -> RGBA16F x 2  accumulated colour, alpha = luminance variance (SVGF §4.1-4.2)
+//                 RGBA32UI     geometry record (instance, triangle, depth, normal)
+//                 RGBA16F      history length, depth gradient / depth, roughness
+//                 RGBA32F      luminance moments (mu1, mu2) of diffuse and specular
+//   a-trous i  -> RGBA16F x 2  filtered colour + variance, step 2^i (SVGF §4.3-4.4); the
+//                              output of iteration 0 is next frame's colour history
+//   composite  -> RGBA16F      linear colour (for the headset compositor)
+//                 RGBA8        display colour: exposure, PBR Neutral, sRGB-encoded
+//                 R32F         reversed-Z depth (the G-buffer's is overwritten next frame)
+// 'full' fuses the composite into the last a-trous iteration; 'temporal' and 'off' run it
+// alone (on the temporal output, resp. the raw input).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/program.h"
+
+namespace photovr::gl {
+
+class GBufferPass;
+
+enum class DenoiseMode { Off, Temporal, Full };
+DenoiseMode parseDenoiseMode(const std::string& name);  // "off|temporal|full"; else UsageError
+std::string denoiseModeName(DenoiseMode mode);
+
+// Every tunable of the denoiser with its source.
+struct DenoiseParams {
+  // SVGF §4.1: exponential moving average weight of the new sample, colour ...
+  float colorAlpha = 0.2f;
+  // ... and luminance moments (§4.2, the same 0.2).
+  float momentsAlpha = 0.2f;
+  // History length cap; with alpha = max(alpha, 1/n) only n < 1/alpha matters, the cap
+  // just bounds the stored count (Falcor SVGFReproject uses 32).
+  int historyCap = 32;
+  // SVGF §4.2: below 4 frames of history the variance is estimated spatially (7x7).
+  int temporalVarianceFrames = 4;
+  // Back-projection rejection (SVGF §4.1 names the tests; thresholds from Falcor's
+  // SVGFReproject): depth change > 10 x (|grad z| + epsilon); normals further apart than
+  // 16 x 1e-2. The epsilon is relative here (Falcor: 1e-2 in scene units): 0.5 % of the
+  // distance admits the depth change of a head moving 1 m/s at 75 Hz at 2.7 m.
+  float depthRejectFactor = 10.0f;
+  float depthRejectEpsilon = 5e-3f;
+  float normalRejectDistance = 0.16f;
+  // Also reject history from another triangle of the same instance (issue 5, item 1).
+  bool requireSameTriangle = true;
+  // SVGF §4.4 / §5: sigma_z = 1 (eq. 3), sigma_n = 128 (eq. 4), sigma_l = 4 (eq. 5).
+  float sigmaDepth = 1.0f;
+  float sigmaNormal = 128.0f;
+  float sigmaLuminance = 4.0f;
+  // Ours (no source in SVGF, which has no specular split): a tighter colour weight for
+  // specular, whose edges are reflections that the geometry weights cannot see.
+  float sigmaLuminanceSpecular = 2.0f;
+  // Ours: specular is filtered while step <= max(1, footprint x alpha), alpha = roughness^2
+  // (GGX lobe width); 16 lets roughness 1 use all 5 levels, 0.5 the first 3.
+  float specularFootprint = 16.0f;
+  // SVGF §4.3: 5 a-trous iterations (steps 1, 2, 4, 8, 16).
+  int iterations = 5;
+  // Display transform: linear scale before the tone map.
+  float exposure = 1.0f;
+};
+
+// One eye's denoiser input on the CPU: linear RGB, rows bottom-up as GL stores them,
+// width x height each. Diffuse and specular radiance are demodulated by their albedos.
+struct NoisyEye {
+  int width = 0, height = 0;
+  const glm::vec3* diffuse = nullptr;
+  const glm::vec3* specular = nullptr;
+  const glm::vec3* diffuseAlbedo = nullptr;
+  const glm::vec3* specularAlbedo = nullptr;
+  const glm::vec3* unfiltered = nullptr;  // primary emission; the sky in background pixels
+};
+
+// The G-buffer textures the denoiser reads (2-layer arrays, formats as in gl/gbuffer.h).
+struct DenoiseGeometry {
+  unsigned visibility = 0, normal = 0, material = 0, motion = 0, depth = 0;
+};
+DenoiseGeometry denoiseGeometry(const GBufferPass& gbuffer);
+
+struct PassTiming {
+  std::string name;
+  double ms;  // glFinish-bracketed wall time
+};
+
+class Denoiser {
+ public:
+  Denoiser(int eyeWidth, int eyeHeight, const DenoiseParams& params = {});
+  ~Denoiser();
+  Denoiser(const Denoiser&) = delete;
+  Denoiser& operator=(const Denoiser&) = delete;
+
+  // Denoises eyes [0, eyeCount) and composites them. History is dropped on resetHistory,
+  // on the first frame, and after an 'off' frame (which does not maintain it).
+  void run(const GBufferPass& gbuffer, const std::array<NoisyEye, 2>& eyes, int eyeCount,
+           DenoiseMode mode, bool resetHistory);
+  void run(const DenoiseGeometry& gbuffer, const std::array<NoisyEye, 2>& eyes, int eyeCount,
+           DenoiseMode mode, bool resetHistory);
+
+  std::vector<glm::u8vec4> readDisplay(int eye) const;  // sRGB-encoded, alpha 255
+  std::vector<glm::vec3> readLinear(int eye) const;
+  std::vector<float> readDepth(int eye) const;
+  // Intermediate results of the last run, for tests and debugging. stage 0 = temporal
+  // output, stage i + 1 = a-trous iteration i (ping-pong: intact for the last two stages).
+  std::vector<glm::vec4> readStage(int stage, bool specular, int eye) const;
+  std::vector<glm::vec4> readMoments(int eye) const;
+  std::vector<glm::vec4> readAux(int eye) const;  // history length, grad depth / depth, roughness
+
+  // For the headset compositor: 2-layer arrays, layer = eye.
+  unsigned displayTexture() const { return display_; }  // RGBA8, sRGB-encoded values
+  unsigned linearTexture() const { return linear_; }    // RGBA16F
+  unsigned depthTexture() const { return depth_; }      // R32F reversed-Z
+
+  void setParams(const DenoiseParams& params) { params_ = params; }
+  const DenoiseParams& params() const { return params_; }
+  // Per-pass wall times of the last run (glFinish before and after each pass) when on.
+  void setTiming(bool on) { timing_ = on; }
+  const std::vector<PassTiming>& timings() const { return timings_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  enum Input { InDiffuse, InSpecular, InDiffuseAlbedo, InSpecularAlbedo, InUnfiltered, InCount };
+  void upload(const std::array<NoisyEye, 2>& eyes, int eyeCount);
+  void uploadUniforms(bool reset);
+  void temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned outSpecular);
+  void atrous(int iteration, const unsigned in[2], const unsigned out[2], const DenoiseGeometry& g);
+  void composite(const unsigned in[2], const DenoiseGeometry& g);
+  void bindCompositeOutputs(const DenoiseGeometry& g) const;
+  void dispatch() const;
+  template <typename F>
+  void timed(const char* name, F&& pass);
+
+  int width_, height_;
+  DenoiseParams params_;
+  Program temporal_, atrous_, atrousComposite_, composite_;
+  unsigned uniforms_ = 0;
+  unsigned inputs_[InCount] = {};
+  // Ping-ponged by frame parity: [frame & 1] is written, the other read as "previous".
+  unsigned geometry_[2] = {}, aux_[2] = {}, moments_[2] = {};
+  unsigned history_[2][2] = {};                 // [parity][diffuse, specular]
+  unsigned filterA_[2] = {}, filterB_[2] = {};  // [diffuse, specular]
+  unsigned linear_ = 0, display_ = 0, depth_ = 0;
+  unsigned stages_[6][2] = {};  // what readStage() reads
+  int frame_ = 0;
+  int eyeCount_ = 2;
+  bool historyValid_ = false;
+  bool timing_ = false;
+  std::vector<PassTiming> timings_;
+};
+
+}  // namespace photovr::gl

@@ -1,0 +1,85 @@
+// Helpers shared by the SVGF passes (Schied et al., "Spatiotemporal Variance-Guided
+// Filtering", HPG 2017; section and equation numbers below refer to that paper).
+#include "denoise_shared.h"
+
+layout(std140, binding = SVGF_UNIFORMS_BINDING) uniform DenoiseBlock { DenoiseUniforms params; };
+
+ivec2 eyeSize() { return params.frame.xy; }
+bool inside(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, eyeSize())); }
+
+// Rounds to the nearest half float (ties to even) in float. llvmpipe's float -> half
+// conversion on imageStore truncates (measured: a constant image lost one half ulp per
+// pass, compounding through the history); a value already on the half grid stores
+// exactly under any rounding. Half subnormals (< 6.1e-5) are left to the store.
+vec4 roundToHalf(vec4 v) {
+  uvec4 b = floatBitsToUint(v);
+  b = (b + 0x0FFFu + ((b >> 13) & 1u)) & ~0x1FFFu;
+  return uintBitsToFloat(b);
+}
+
+// Rec. 709 luminance: the scalar whose moments drive the variance (§4.2).
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// Octahedral unit-vector encoding (Cigolle et al., JCGT 2014), 2 x 16-bit snorm.
+vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+uint packNormal(vec3 n) {
+  vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+  if (n.z < 0.0) p = (1.0 - abs(p.yx)) * signNotZero(p);
+  return packSnorm2x16(p);
+}
+vec3 unpackNormal(uint bits) {
+  vec2 e = unpackSnorm2x16(bits);
+  vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (v.z < 0.0) v.xy = (1.0 - abs(v.yx)) * signNotZero(v.xy);
+  return normalize(v);
+}
+
+// The per-pixel geometry record the temporal pass writes (RGBA32UI): instance, triangle,
+// floatBits(reversed-Z depth), octahedral normal. One fetch gives everything the edge
+// weights need; the next frame reads it as its "previous G-buffer".
+struct Geometry {
+  uint instance, triangle;
+  float depth;
+  vec3 normal;
+};
+Geometry unpackGeometry(uvec4 g) {
+  return Geometry(g.x, g.y, uintBitsToFloat(g.z), unpackNormal(g.w));
+}
+
+// Eq. (3): depth weight, with the depth change predicted by the screen-space gradient
+// over the offset as the scale. Reversed-Z depth is affine in screen space on a plane, so
+// a plane gives exactly exp(-1 / sigma_z). The epsilon is relative to the depth (depth
+// is ~near / distance, so an absolute one would depend on the scene's scale).
+float depthWeight(float d, float dq, vec2 gradient, vec2 offset) {
+  const float kRelativeEpsilon = 1e-5;  // ~100 float ulps of the depth: planes facing the eye
+  float scale = params.edge.x * abs(dot(gradient, offset)) + kRelativeEpsilon * d;
+  return exp(-abs(d - dq) / scale);
+}
+
+// Eq. (4): normal weight, max(0, n.nq)^sigma_n.
+float normalWeight(vec3 n, vec3 nq) { return pow(max(0.0, dot(n, nq)), params.edge.y); }
+
+// Eq. (5): luminance weight; 'phi' = sigma_l * sqrt(g3x3(Var)) + epsilon.
+float luminanceWeight(float l, float lq, float phi) { return exp(-abs(l - lq) / phi); }
+
+// Khronos PBR Neutral (2024 reference GLSL); mirrors core/tonemap.cpp tonemapPbrNeutral.
+vec3 tonemapPbrNeutral(vec3 color) {
+  const float kStartCompression = 0.8 - 0.04;
+  const float kDesaturation = 0.15;
+  float x = min(color.r, min(color.g, color.b));
+  float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+  color -= offset;
+  float peak = max(color.r, max(color.g, color.b));
+  if (peak < kStartCompression) return color;
+  const float d = 1.0 - kStartCompression;
+  float newPeak = 1.0 - d * d / (peak + d - kStartCompression);
+  color *= newPeak / peak;
+  float g = 1.0 - 1.0 / (kDesaturation * (peak - newPeak) + 1.0);
+  return mix(color, vec3(newPeak), g);
+}
+
+// IEC 61966-2-1 sRGB encoding.
+vec3 linearToSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
