@@ -28,6 +28,8 @@ const char* const kRenderHelp =
     "  --frames F             frames accumulated with sub-pixel jitter (1..65536, default 1)\n"
     "  --seed S               random seed (default 0)\n"
     "  --exposure E           exposure multiplier for color.png (default 1)\n"
+    "  --denoise off|temporal|full  hybrid: SVGF denoiser in GL (default off); writes\n"
+    "                         denoised.png and per eye denoised.exr from the last frame\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
     "  --out DIR              output folder (default out/<scene>)\n";
 
@@ -43,9 +45,9 @@ std::string defaultOutDir(const std::string& scene) {
 }  // namespace
 
 RenderRequest parseRenderRequest(const Args& args) {
-  std::set<std::string> valued = {"--scene",   "--env",    "--width", "--height",
-                                  "--backend", "--out",    "--mode",  "--spp",
-                                  "--bounces", "--frames", "--seed",  "--exposure"};
+  std::set<std::string> valued = {"--scene", "--env",      "--width",  "--height",  "--backend",
+                                  "--out",   "--mode",     "--spp",    "--bounces", "--frames",
+                                  "--seed",  "--exposure", "--denoise"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())
@@ -61,6 +63,9 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.frames = o.integer("--frames", 1, 1, 65536);
   r.seed = uint32_t(o.integer("--seed", 0, 0, 2147483647));
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
+  r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
+  if (r.denoise != "off" && r.mode != "hybrid")
+    throw UsageError("--denoise: only --mode hybrid has the G-buffer guides the denoiser needs");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));

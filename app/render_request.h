@@ -18,6 +18,7 @@ struct RenderRequest {
   int spp = 1, bounces = 8, frames = 1;
   uint32_t seed = 0;
   float exposure = 1.0f;
+  std::string denoise = "off";  // off | temporal | full (hybrid)
   Scene scene;
   View view;
 };

@@ -6,6 +6,8 @@
 #include "app/gl_context.h"
 #include "app/render_request.h"
 #include "app/trace_output.h"
+#include "gl/denoiser.h"
+#include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
@@ -73,6 +75,25 @@ void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, d
   for (const std::string& p : written) std::printf("  %s\n", p.c_str());
 }
 
+// The denoiser's last frame: denoised.png (both eyes) and per eye denoised.exr (linear).
+void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eyeCount) {
+  Image8 display(r.width * eyeCount, r.height, 3);
+  for (int e = 0; e < eyeCount; ++e) {
+    const std::vector<glm::u8vec4> d = denoiser.readDisplay(e);
+    for (int y = 0; y < r.height; ++y)
+      for (int x = 0; x < r.width; ++x) {
+        const glm::u8vec4 c = d[size_t(r.height - 1 - y) * r.width + x];
+        uint8_t* p = display.at(e * r.width + x, y);
+        p[0] = c.r, p[1] = c.g, p[2] = c.b;
+      }
+    const std::string path = r.outDir + "/" + eyeFolder(r.view, e) + "/denoised.exr";
+    writeImage(path, toImage(denoiser.readLinear(e), r.width, r.height));
+    std::printf("  %s\n", path.c_str());
+  }
+  writeImage(r.outDir + "/denoised.png", display);
+  std::printf("  %s/denoised.png\n", r.outDir.c_str());
+}
+
 }  // namespace
 
 int renderPathTracedMode(const RenderRequest& r) {
@@ -105,6 +126,14 @@ int renderHybridMode(const RenderRequest& r) {
                           settingsOf(r));
   const int eyeCount = r.view.stereo ? 2 : 1;
   HybridFrameTimes total;
+  const gl::DenoiseMode denoiseMode = gl::parseDenoiseMode(r.denoise);
+  std::unique_ptr<gl::Denoiser> denoiser;
+  if (denoiseMode != gl::DenoiseMode::Off) {
+    gl::DenoiseParams params;
+    params.exposure = r.exposure;
+    denoiser = std::make_unique<gl::Denoiser>(r.width, r.height, params);
+  }
+  double denoiseMs = 0.0;
   const auto t1 = Clock::now();
   const auto sums = accumulateFrames(r, [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
     HybridFrameTimes t;
@@ -112,16 +141,24 @@ int renderHybridMode(const RenderRequest& r) {
     total.gbufferMs += t.gbufferMs, total.readbackMs += t.readbackMs;
     total.rebuildMs += t.rebuildMs, total.traceMs += t.traceMs;
     total.outsideHits += t.outsideHits;
+    if (denoiser) {
+      const auto t0 = Clock::now();
+      const DenoiseInput left = makeDenoiseInput(out[0]);
+      const DenoiseInput right = makeDenoiseInput(out[eyeCount - 1]);
+      denoiser->run(renderer.gbuffer(), {left.eye, right.eye}, eyeCount, denoiseMode, f == 0);
+      denoiseMs += 1e3 * secondsSince(t0);
+    }
     return out;
   });
-  char stages[256];
+  char stages[320];
   const double n = r.frames;
   std::snprintf(stages, sizeof stages,
-                "G-buffer %.1f ms, read-back %.1f ms, hit rebuild %.1f ms, trace %.1f ms "
-                "(%llu shared-edge hits clamped)",
+                "G-buffer %.1f ms, read-back %.1f ms, hit rebuild %.1f ms, trace %.1f ms, "
+                "denoise (%s) %.1f ms (%llu shared-edge hits clamped)",
                 total.gbufferMs / n, total.readbackMs / n, total.rebuildMs / n, total.traceMs / n,
-                (unsigned long long)total.outsideHits);
+                r.denoise.c_str(), denoiseMs / n, (unsigned long long)total.outsideHits);
   writeAndReport(r, sums, secondsSince(t1), stages);
+  if (denoiser) writeDenoised(r, *denoiser, eyeCount);
   return 0;
 }
 
