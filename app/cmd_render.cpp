@@ -28,6 +28,10 @@ const char* const kRenderHelp =
     "  --frames F             frames accumulated with sub-pixel jitter (1..65536, default 1)\n"
     "  --seed S               random seed (default 0)\n"
     "  --exposure E           exposure multiplier for color.png (default 1)\n"
+    "  --sampling S           hybrid: uniform (default); hidden-area (pixels the DK2 lens never\n"
+    "                         shows are not traced); lens-matched (--spp is the maximum,\n"
+    "                         spread by the lens's magnification); thesis-zones (the\n"
+    "                         thesis's Algorithm 6, for comparison)\n"
     "  --denoise off|temporal|full  hybrid: SVGF denoiser in GL (default off); writes\n"
     "                         denoised.png and per eye denoised.exr from the last frame\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
@@ -45,9 +49,9 @@ std::string defaultOutDir(const std::string& scene) {
 }  // namespace
 
 RenderRequest parseRenderRequest(const Args& args) {
-  std::set<std::string> valued = {"--scene", "--env",      "--width",  "--height",  "--backend",
-                                  "--out",   "--mode",     "--spp",    "--bounces", "--frames",
-                                  "--seed",  "--exposure", "--denoise"};
+  std::set<std::string> valued = {"--scene", "--env",      "--width",   "--height",  "--backend",
+                                  "--out",   "--mode",     "--spp",     "--bounces", "--frames",
+                                  "--seed",  "--exposure", "--denoise", "--sampling"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())
@@ -64,6 +68,8 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.seed = uint32_t(o.integer("--seed", 0, 0, 2147483647));
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
+  r.sampling =
+      o.choice("--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"});
   if (r.denoise != "off" && r.mode != "hybrid")
     throw UsageError("--denoise: only --mode hybrid has the G-buffer guides the denoiser needs");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
@@ -71,6 +77,8 @@ RenderRequest parseRenderRequest(const Args& args) {
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
+  if (r.sampling != "uniform" && (r.mode != "hybrid" || !r.view.stereo))
+    throw UsageError("--sampling: lens-based sample maps need --mode hybrid and --eyes stereo");
   return r;
 }
 

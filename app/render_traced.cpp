@@ -5,6 +5,7 @@
 
 #include "app/gl_context.h"
 #include "app/render_request.h"
+#include "app/sample_maps.h"
 #include "app/trace_output.h"
 #include "gl/denoiser.h"
 #include "hybrid/denoise_input.h"
@@ -134,10 +135,14 @@ int renderHybridMode(const RenderRequest& r) {
     denoiser = std::make_unique<gl::Denoiser>(r.width, r.height, params);
   }
   double denoiseMs = 0.0;
+  const auto maps = lensSampleMaps(r.sampling, r.width, r.height, r.spp);
+  const std::array<const std::vector<uint16_t>*, 2> mapPtrs = {
+      maps[0].empty() ? nullptr : &maps[0], maps[1].empty() ? nullptr : &maps[1]};
+  std::printf("sampling: %s (%s)\n", r.sampling.c_str(), describeSampleMaps(maps).c_str());
   const auto t1 = Clock::now();
   const auto sums = accumulateFrames(r, [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
     HybridFrameTimes t;
-    auto out = renderer.render(eyes, eyeCount, f, &t);
+    auto out = renderer.render(eyes, eyeCount, f, &t, mapPtrs);
     total.gbufferMs += t.gbufferMs, total.readbackMs += t.readbackMs;
     total.rebuildMs += t.rebuildMs, total.traceMs += t.traceMs;
     total.outsideHits += t.outsideHits;
