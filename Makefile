@@ -7,7 +7,7 @@ OUT ?= out/$(SCENE)
 .PHONY: run test setup build bench asan format clean
 
 run: build
-	./$(BUILD)/photovr render --scene $(SCENE) --out $(OUT)
+	./$(BUILD)/photovr render --scene $(SCENE) --denoise full --out $(OUT)
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
