@@ -101,3 +101,39 @@ TEST(Lights, AreaLightSamplePdfMatchesPdfAreaAndHitsTheEmitter) {
 
 }  // namespace
 }  // namespace photovr
+
+#include "tests/trace/chi_square.h"
+
+namespace photovr {
+namespace {
+
+// Area-light sampling: points on a 1 x 1 m emitter made of two triangles must be uniform
+// over its area (equal-area triangles picked with equal probability, uniform within each).
+TEST(Lights, AreaLightSamplesAreUniformOverTheEmitterChiSquare) {
+  Scene s;
+  Material emitter = testing::diffuseMaterial(glm::vec3(0));
+  emitter.emissiveFactor = glm::vec3(1.0f);
+  s.materials.push_back(emitter);
+  testing::addSquare(
+      s, 0.5f, 0,
+      glm::rotate(glm::translate(glm::mat4(1.0f), {0, 2, 0}), float(M_PI / 2), {1, 0, 0}));
+  const LightSet lights(s);
+  test::Histogram h(10, 10);
+  Sampler rng = Sampler::make({3, 0, 0, 0, 0, 0});
+  // 4e5 samples, ~4000 per cell. (Checked at 1e5, 4e5 and 1.6e6, all passing: a systematic
+  // non-uniformity would grow with the count; with this fixed seed 2e5 lands at p = 1.1e-4.)
+  for (int i = 0; i < 400000; ++i) {
+    const LightSample ls = lights.sample({0.2f, 0, 0.1f}, rng.next(), rng.next2());
+    if (!ls.valid()) {
+      h.addFailure();
+      continue;
+    }
+    const glm::vec3 p = glm::vec3(0.2f, 0, 0.1f) + ls.direction * ls.distance;
+    h.add({p.x + 0.5f, p.z + 0.5f});  // the emitter spans [-0.5, 0.5]^2 in x, z
+  }
+  const test::ChiSquareResult r = test::chiSquareTest(h, [](double, double) { return 1.0; });
+  EXPECT_TRUE(r.passed()) << r.describe();
+}
+
+}  // namespace
+}  // namespace photovr
