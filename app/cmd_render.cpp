@@ -32,7 +32,8 @@ const char* const kRenderHelp =
     "                         shows are not traced); lens-matched (--spp is the maximum,\n"
     "                         spread by the lens's magnification); thesis-zones (the\n"
     "                         thesis's Algorithm 6, for comparison)\n"
-    "  --denoise off|temporal|full  hybrid: SVGF denoiser in GL (default off); writes\n"
+    "  --denoise off|temporal|full  SVGF denoiser in GL (default off; pt draws a G-buffer\n"
+    "                         for its guides); writes\n"
     "                         denoised.png and per eye denoised.exr from the last frame\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
     "  --out DIR              output folder (default out/<scene>)\n";
@@ -70,8 +71,8 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
   r.sampling =
       o.choice("--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"});
-  if (r.denoise != "off" && r.mode != "hybrid")
-    throw UsageError("--denoise: only --mode hybrid has the G-buffer guides the denoiser needs");
+  if (r.denoise != "off" && r.mode == "gbuffer")
+    throw UsageError("--denoise: needs a traced mode (hybrid or pt)");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));

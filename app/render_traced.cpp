@@ -30,6 +30,12 @@ TraceSettings settingsOf(const RenderRequest& r) {
   return s;
 }
 
+gl::DenoiseParams paramsOf(const RenderRequest& r) {
+  gl::DenoiseParams params;
+  params.exposure = r.exposure;
+  return params;
+}
+
 using FrameRenderer =
     std::function<std::array<EyeImage, 2>(const std::array<EyeCamera, 2>&, uint32_t)>;
 
@@ -95,6 +101,31 @@ void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eye
   std::printf("  %s/denoised.png\n", r.outDir.c_str());
 }
 
+// A G-buffer drawn only to guide the denoiser of a path-traced frame.
+struct GuideBuffers {
+  gl::SceneGpu gpu;
+  gl::GBufferPass pass;
+  gl::Denoiser denoiser;
+  std::array<glm::mat4, 2> previous{};
+
+  GuideBuffers(const RenderRequest& r, const gl::Context& ctx)
+      : gpu(r.scene),
+        pass(r.width, r.height, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"),
+             gl::EyeRouting::Layered),
+        denoiser(r.width, r.height, paramsOf(r)) {}
+
+  void denoise(const std::array<EyeCamera, 2>& eyes, const std::array<EyeImage, 2>& images,
+               int eyeCount, gl::DenoiseMode mode, uint32_t frame) {
+    std::array<glm::mat4, 2> vp;
+    for (int e = 0; e < 2; ++e) vp[e] = eyes[e].unjitteredProjection() * eyes[e].view();
+    pass.render(gpu, eyes, frame == 0 ? vp : previous);
+    previous = vp;
+    const DenoiseInput left = makeDenoiseInput(images[0]);
+    const DenoiseInput right = makeDenoiseInput(images[eyeCount - 1]);
+    denoiser.run(pass, {left.eye, right.eye}, eyeCount, mode, frame == 0);
+  }
+};
+
 }  // namespace
 
 int renderPathTracedMode(const RenderRequest& r) {
@@ -104,19 +135,35 @@ int renderPathTracedMode(const RenderRequest& r) {
   const TraceContext ctx{r.scene, embree, lights, settingsOf(r)};
   const double buildMs = 1e3 * secondsSince(t0);
   const int eyeCount = r.view.stereo ? 2 : 1;
-  double traceMs = 0.0;
+  // Denoising pt uses the same denoiser, guided by a G-buffer drawn only for its guides
+  // (normals, depth, motion, ids); the traced image never depends on it.
+  const gl::DenoiseMode denoiseMode = gl::parseDenoiseMode(r.denoise);
+  std::unique_ptr<gl::Context> context;
+  std::unique_ptr<GuideBuffers> guides;
+  if (denoiseMode != gl::DenoiseMode::Off) {
+    context = createRenderContext(r.backend);
+    guides = std::make_unique<GuideBuffers>(r, *context);
+  }
+  double traceMs = 0.0, denoiseMs = 0.0;
   const auto t1 = Clock::now();
   const auto sums = accumulateFrames(r, [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
     const auto ts = Clock::now();
     std::array<EyeImage, 2> out;
     for (int e = 0; e < eyeCount; ++e) out[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), f);
     traceMs += 1e3 * secondsSince(ts);
+    if (guides) {
+      const auto td = Clock::now();
+      guides->denoise(eyes, out, eyeCount, denoiseMode, f);
+      denoiseMs += 1e3 * secondsSince(td);
+    }
     return out;
   });
-  char stages[128];
-  std::snprintf(stages, sizeof stages, "BVH build %.0f ms (once), trace %.1f ms", buildMs,
-                traceMs / r.frames);
+  char stages[192];
+  std::snprintf(stages, sizeof stages,
+                "BVH build %.0f ms (once), trace %.1f ms, denoise (%s) %.1f ms", buildMs,
+                traceMs / r.frames, r.denoise.c_str(), denoiseMs / r.frames);
   writeAndReport(r, sums, secondsSince(t1), stages);
+  if (guides) writeDenoised(r, guides->denoiser, eyeCount);
   return 0;
 }
 
@@ -130,9 +177,7 @@ int renderHybridMode(const RenderRequest& r) {
   const gl::DenoiseMode denoiseMode = gl::parseDenoiseMode(r.denoise);
   std::unique_ptr<gl::Denoiser> denoiser;
   if (denoiseMode != gl::DenoiseMode::Off) {
-    gl::DenoiseParams params;
-    params.exposure = r.exposure;
-    denoiser = std::make_unique<gl::Denoiser>(r.width, r.height, params);
+    denoiser = std::make_unique<gl::Denoiser>(r.width, r.height, paramsOf(r));
   }
   double denoiseMs = 0.0;
   const auto maps = lensSampleMaps(r.sampling, r.width, r.height, r.spp);

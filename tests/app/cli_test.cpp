@@ -159,3 +159,22 @@ TEST(Cli, HybridAndPathTracedRendersWriteColourAndAovs) {
 
 }  // namespace
 }  // namespace photovr
+
+namespace photovr {
+namespace {
+
+TEST(Cli, DenoisedRendersForHybridAndPt) {
+  for (const char* mode : {"hybrid", "pt"}) {
+    const std::string dir = testing::tempDir(std::string("denoise-") + mode);
+    const auto r = testing::runPhotovr(std::string("render --mode ") + mode +
+                                       " --denoise full --scene cornell --backend osmesa "
+                                       "--width 16 --height 18 --frames 2 --out " + dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(readImageRGBA8(dir + "/denoised.png").width, 32) << mode;
+    EXPECT_EQ(readImageF(dir + "/left/denoised.exr").width, 16) << mode;
+  }
+  EXPECT_EQ(testing::runPhotovr("render --mode gbuffer --denoise full").status, 2);
+}
+
+}  // namespace
+}  // namespace photovr
