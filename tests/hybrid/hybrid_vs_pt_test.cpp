@@ -169,8 +169,10 @@ std::vector<glm::vec3> meanImage(const FrameStats& s) {
   return out;
 }
 
-TEST(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
-  const Scene scene = mirrorScene();
+class HybridConvergence : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
+  const Scene scene = sceneNamed(GetParam());
   // Reference: 64 frames x 32 spp = 2048 samples per pixel of pure path tracing.
   const EmbreeScene embree(scene);
   const LightSet lights(scene);
@@ -182,33 +184,42 @@ TEST(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
   for (int f = 0; f < 64; ++f)
     reference.add(renderPathTraced(rc, monoCamera(scene, uint32_t(f)), 0, uint32_t(f)));
   const std::vector<glm::vec3> ref = meanImage(reference);
-  // Frames 0..N-1 of the 64 rendered: relMSE at N = 4, 16, 64 for both modes.
-  auto relMseAt = [&](bool hybrid, int n) {
-    FrameStats dst;
-    testing::osmesaContext();
-    TraceSettings s;
-    s.seed = hybrid ? 1 : 2;
-    HybridRenderer renderer(scene, kWidth, kHeight, true, s);
-    const TraceContext& c = renderer.traceContext();
-    for (int f = 0; f < n; ++f) {
-      const EyeCamera cam = monoCamera(scene, uint32_t(f));
-      dst.add(hybrid ? renderer.render({cam, cam}, 1, uint32_t(f), nullptr)[0]
-                     : renderPathTraced(c, cam, 0, uint32_t(f)));
-    }
-    return relMse(meanImage(dst), ref);
-  };
+  testing::osmesaContext();
+  TraceSettings s;
+  s.seed = 1;
+  HybridRenderer renderer(scene, kWidth, kHeight, true, s);
+  TraceSettings ps = s;
+  ps.seed = 2;
+  const TraceContext& hc = renderer.traceContext();
+  const TraceContext pc{hc.scene, hc.embree, hc.lights, ps};
   for (bool hybrid : {true, false}) {
-    const double e4 = relMseAt(hybrid, 4), e16 = relMseAt(hybrid, 16), e64 = relMseAt(hybrid, 64);
-    RecordProperty(hybrid ? "hybrid_relmse_4_16_64" : "pt_relmse_4_16_64",
-                   std::to_string(e4) + " " + std::to_string(e16) + " " + std::to_string(e64));
+    // relMSE of the mean of the first N frames, N = 4, 16, 64 (prefixes of one sequence).
+    FrameStats stats;
+    std::vector<double> e;
+    for (int f = 0; f < 64; ++f) {
+      const EyeCamera cam = monoCamera(scene, uint32_t(f));
+      stats.add(hybrid ? renderer.render({cam, cam}, 1, uint32_t(f), nullptr)[0]
+                       : renderPathTraced(pc, cam, 0, uint32_t(f)));
+      if (f == 3 || f == 15 || f == 63) e.push_back(relMse(meanImage(stats), ref));
+    }
+    const char* mode = hybrid ? "hybrid" : "pt";
+    RecordProperty(std::string(mode) + "_relmse_4_16_64",
+                   std::to_string(e[0]) + " " + std::to_string(e[1]) + " " + std::to_string(e[2]));
     // Ideal 1/16 from N = 4 to 64. relMSE of a 360-pixel image is itself noisy (a few
-    // fireflies dominate it), so the band is a factor 2.5 either way, plus the reference's
-    // own error (1/32 of the N = 64 image's variance) which flattens the curve slightly.
-    EXPECT_LT(e64, e4 / 16.0 * 2.5) << (hybrid ? "hybrid" : "pt");
-    EXPECT_GT(e64, e4 / 16.0 / 2.5) << (hybrid ? "hybrid" : "pt");
-    EXPECT_LT(e16, e4) << (hybrid ? "hybrid" : "pt");
+    // fireflies dominate it), so the band is a factor 2.5 either way; the reference's own
+    // error (1/32 of the N = 64 image's variance) flattens the curve slightly.
+    EXPECT_LT(e[2], e[0] / 16.0 * 2.5) << GetParam() << " " << mode;
+    EXPECT_GT(e[2], e[0] / 16.0 / 2.5) << GetParam() << " " << mode;
+    EXPECT_LT(e[1], e[0]) << GetParam() << " " << mode;
   }
 }
+
+// Not spheres: one firefly among pt's first 4 frames there puts relMSE(4) at 2.48 against
+// 0.16 at 16 and 0.014 at 64 — "faster than 1/N", a heavy-tail effect a 360-pixel relMSE
+// cannot average out (hybrid on spheres: 0.073, 0.017, 0.0034). Not atrium: 27 s per run;
+// both are covered by the Z-test of hybrid against pt above. Measured (4/16/64 frames):
+// cornell 0.44/0.069/0.014, thin 0.021/0.0053/0.0016, mirror 0.0032/0.00096/0.00018.
+INSTANTIATE_TEST_SUITE_P(Scenes, HybridConvergence, ::testing::Values("cornell", "thin", "mirror"));
 
 }  // namespace
 }  // namespace photovr
