@@ -316,3 +316,35 @@ TEST(HybridSampleMap, ZeroSamplePixelsAreNotTracedAndCountsFollowTheMap) {
 
 }  // namespace
 }  // namespace photovr
+
+namespace photovr {
+namespace {
+
+// Skipping work must not change what is seen: pixels the DK2 lens never shows are not
+// traced (sample map 0), and every other pixel is bit-identical to a uniform render (the
+// random numbers are keyed by pixel, not by how many pixels were traced before it).
+TEST(SkippedWork, HiddenAreaPixelsChangeNothingElse) {
+  const Scene scene = makeBuiltinScene("cornell");
+  testing::osmesaContext();
+  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  std::vector<uint16_t> mask(size_t(kWidth) * kHeight, 1);
+  for (size_t i = 0; i < mask.size(); i += 7) mask[i] = 0;  // any pattern of skipped pixels
+  StereoRig rig;
+  rig.head = poseOf(scene.cameras[0]);
+  const EyeCamera cam = rig.eye(Eye::Left, kWidth, kHeight, haltonJitter(0));
+  const EyeImage all = renderer.render({cam, cam}, 1, 0, nullptr)[0];
+  const EyeImage some = renderer.render({cam, cam}, 1, 0, nullptr, {&mask, nullptr})[0];
+  size_t skipped = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i] == 0) {
+      skipped += some.samples[i] == 0;
+      continue;
+    }
+    ASSERT_EQ(all.color[i], some.color[i]) << i;
+  }
+  EXPECT_EQ(skipped, (mask.size() + 6) / 7);
+  EXPECT_LT(some.rays, all.rays);  // the skipped pixels cast no rays
+}
+
+}  // namespace
+}  // namespace photovr
