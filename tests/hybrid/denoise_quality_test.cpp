@@ -11,6 +11,7 @@
 #include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
 #include "tests/gl/gl_test_util.h"
+#include "tests/hybrid/reference_image.h"
 
 namespace photovr {
 namespace {
@@ -23,20 +24,9 @@ EyeCamera eyeOf(const Scene& s, uint32_t frame) {
   return rig.eye(Eye::Left, kW, kH, haltonJitter(frame));
 }
 
+// 512 spp over 32 jitter positions.
 std::vector<glm::vec3> reference(const Scene& s) {
-  const EmbreeScene embree(s);
-  const LightSet lights(s);
-  TraceSettings t;
-  t.samplesPerPixel = 16;
-  t.seed = 77;
-  const TraceContext ctx{s, embree, lights, t};
-  std::vector<glm::vec3> mean(size_t(kW) * kH, glm::vec3(0.0f));
-  const int frames = 32;  // 512 spp over 32 jitter positions
-  for (int f = 0; f < frames; ++f) {
-    const EyeImage img = renderPathTraced(ctx, eyeOf(s, uint32_t(f)), 0, uint32_t(f));
-    for (size_t i = 0; i < mean.size(); ++i) mean[i] += img.color[i] / float(frames);
-  }
-  return mean;
+  return testing::referenceImage(s, eyeOf(s, 0), 32, 16, 77);
 }
 
 class DenoiseQuality : public ::testing::TestWithParam<const char*> {};

@@ -16,6 +16,7 @@
 #include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
 #include "tests/gl/gl_test_util.h"
+#include "tests/hybrid/reference_image.h"
 
 namespace photovr {
 namespace {
@@ -33,21 +34,9 @@ EyeCamera cameraAt(const Scene& s, int frame, bool moving) {
   return rig.eye(Eye::Left, kW, kH, haltonJitter(uint32_t(frame)));
 }
 
+// 512 spp at the sequence's final pose.
 std::vector<glm::vec3> reference(const Scene& s) {
-  const EmbreeScene embree(s);
-  const LightSet lights(s);
-  TraceSettings t;
-  t.samplesPerPixel = 16;
-  t.seed = 55;
-  const TraceContext ctx{s, embree, lights, t};
-  std::vector<glm::vec3> mean(size_t(kW) * kH, glm::vec3(0.0f));
-  for (int f = 0; f < 32; ++f) {
-    EyeCamera cam = cameraAt(s, kFrames - 1, false);
-    cam.jitter = haltonJitter(uint32_t(f));
-    const EyeImage img = renderPathTraced(ctx, cam, 0, uint32_t(f));
-    for (size_t i = 0; i < mean.size(); ++i) mean[i] += img.color[i] / 32.0f;
-  }
-  return mean;
+  return testing::referenceImage(s, cameraAt(s, kFrames - 1, false), 32, 16, 55);
 }
 
 struct Sequence {
