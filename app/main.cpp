@@ -17,7 +17,8 @@ const char* const kUsage =
     "  export-scene  write a built-in scene as glTF 2.0\n"
     "  ab            hybrid vs pure path tracing against a converged reference\n"
     "  reference     render or extend the cached converged reference of a scene\n"
-    "  stress        run the numerical stress suite and print its report\n";
+    "  stress        run the numerical stress suite and print its report\n"
+    "  bench         run time against error of hybrid and pt on the built-in scenes\n";
 
 using Command = int (*)(const photovr::app::Args&);
 
@@ -27,7 +28,8 @@ int dispatch(int argc, char** argv) {
                                                    {"export-scene", photovr::app::runExportScene},
                                                    {"ab", photovr::app::runAb},
                                                    {"reference", photovr::app::runReference},
-                                                   {"stress", photovr::app::runStress}};
+                                                   {"stress", photovr::app::runStress},
+                                                   {"bench", photovr::app::runBench}};
   if (argc < 2) {
     std::cerr << kUsage;
     return 2;

@@ -15,6 +15,7 @@ PACKAGES=(
   libhidapi-dev
   libimgui-dev
   xvfb xauth  # a virtual display for the glfw backend's tests
+  gnuplot-nox  # bench plots (photovr bench)
 )
 
 missing=()
