@@ -18,7 +18,7 @@ struct RenderRequest {
   int spp = 1, bounces = 8, frames = 1;
   uint32_t seed = 0;
   float exposure = 1.0f;
-  std::string denoise = "off";  // off | temporal | full (hybrid)
+  std::string denoise = "off";       // off | temporal | full (hybrid)
   std::string sampling = "uniform";  // uniform | hidden-area | lens-matched | thesis-zones
   Scene scene;
   View view;

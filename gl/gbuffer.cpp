@@ -184,7 +184,9 @@ void GBufferPass::copySideBySideToLayers() {
   }
 }
 
-void GBufferPass::finish() const { api::Finish(); }
+void GBufferPass::finish() const {
+  api::Finish();
+}
 
 GBufferImage GBufferPass::read(int eye) const {
   GBufferImage img;

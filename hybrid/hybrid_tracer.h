@@ -27,5 +27,4 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuff
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,
                           const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats);
 
-
 }  // namespace photovr

@@ -47,15 +47,15 @@ struct GpuMaterial {
 };
 
 struct FrameUniforms {
-  mat4 viewProjection[2];          // jittered, per eye
+  mat4 viewProjection[2];  // jittered, per eye
   mat4 viewProjectionUnjittered[2];
   mat4 previousViewProjection[2];  // last frame's, unjittered
   vec4 eyePosition[2];             // world
   vec4 rayBase[2];                 // world direction = rayBase + x * rayDx + y * rayDy,
   vec4 rayDx[2];                   // x, y window coordinates of the sample in the eye image
   vec4 rayDy[2];
-  vec4 jitter[2];                  // xy = this frame's sub-pixel jitter
-  vec4 viewport;                   // eye width, eye height, 1 / width, 1 / height
+  vec4 jitter[2];  // xy = this frame's sub-pixel jitter
+  vec4 viewport;   // eye width, eye height, 1 / width, 1 / height
 };
 
 #ifdef __cplusplus

@@ -151,7 +151,8 @@ glm::vec3 diffuseAlbedo(const BsdfParams& p) {
 
 glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
   // Karis 2014, EnvBRDFApprox (after Lazarov 2013): scale and bias of F0.
-  const glm::vec3 f0 = glm::mix(glm::vec3(kDielectricF0), p.baseColor, std::clamp(p.metallic, 0.0f, 1.0f));
+  const glm::vec3 f0 =
+      glm::mix(glm::vec3(kDielectricF0), p.baseColor, std::clamp(p.metallic, 0.0f, 1.0f));
   const float r = std::clamp(p.roughness, 0.0f, 1.0f), nv = std::clamp(cosThetaO, 0.0f, 1.0f);
   const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f), c1(1.0f, 0.0425f, 1.04f, -0.04f);
   const glm::vec4 q = r * c0 + c1;

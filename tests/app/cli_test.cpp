@@ -85,8 +85,8 @@ TEST(Cli, ExportedSceneLoadsBackWithTheSameCounts) {
 
 TEST(Cli, RenderWritesEveryImageForBothEyes) {
   const std::string dir = tempDir("render");
-  const auto r =
-      runPhotovr("render --mode gbuffer --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
+  const auto r = runPhotovr(
+      "render --mode gbuffer --scene cornell --backend osmesa --width 64 --height 72 --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* eye : {"left", "right"})
     for (const char* file : {"depth.exr", "normal.png", "albedo.png", "ids.png"})
@@ -145,7 +145,8 @@ TEST(Cli, HybridAndPathTracedRendersWriteColourAndAovs) {
     const std::string dir = testing::tempDir(std::string("traced-") + mode);
     const auto r = testing::runPhotovr(std::string("render --mode ") + mode +
                                        " --scene cornell --backend osmesa --width 24 --height 27 "
-                                       "--spp 2 --frames 2 --out " + dir);
+                                       "--spp 2 --frames 2 --out " +
+                                       dir);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("0 samples rejected"), std::string::npos) << r.output;
     for (const char* eye : {"left", "right"})
@@ -168,7 +169,8 @@ TEST(Cli, DenoisedRendersForHybridAndPt) {
     const std::string dir = testing::tempDir(std::string("denoise-") + mode);
     const auto r = testing::runPhotovr(std::string("render --mode ") + mode +
                                        " --denoise full --scene cornell --backend osmesa "
-                                       "--width 16 --height 18 --frames 2 --out " + dir);
+                                       "--width 16 --height 18 --frames 2 --out " +
+                                       dir);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(readImageRGBA8(dir + "/denoised.png").width, 32) << mode;
     EXPECT_EQ(readImageF(dir + "/left/denoised.exr").width, 16) << mode;
