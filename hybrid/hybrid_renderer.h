@@ -50,6 +50,7 @@ class HybridRenderer {
   const EmbreeScene& embree() const { return embree_; }
   EmbreeScene& embree() { return embree_; }  // e.g. to attach a RayRecorder (bench/)
   const TraceContext& traceContext() const { return ctx_; }
+  void setSeed(uint32_t seed) { ctx_.settings.seed = seed; }
 
  private:
   const Scene& scene_;
