@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/test_dir.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,11 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path testDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "photovr_environment_io" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::freshTestDir("photovr_environment_io");
 }
 
 // 4x2 RGB radiance spanning six orders of magnitude, as real HDR skies do.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/test_dir.h"
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,13 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder per test, so tests never see each other's files.
 fs::path testDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "photovr_gltf_loader" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::freshTestDir("photovr_gltf_loader");
 }
 
 void writeFile(const fs::path& path, const std::string& bytes) {

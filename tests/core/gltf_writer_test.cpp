@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/test_dir.h"
+
 #include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -15,11 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path testDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "photovr_gltf_writer" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::freshTestDir("photovr_gltf_writer");
 }
 
 Mesh quad() {
