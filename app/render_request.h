@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "app/view.h"
 #include "core/scene.h"
+#include "trace/work_skips.h"
 
 namespace photovr::app {
 
@@ -20,6 +21,8 @@ struct RenderRequest {
   float exposure = 1.0f;
   std::string denoise = "off";       // off | temporal | full (hybrid)
   std::string sampling = "uniform";  // uniform | hidden-area | lens-matched | thesis-zones
+  WorkSkips skips;                   // --no-skip turns skips off (trace/work_skips.h)
+  double converge = 0.0;             // --converge: stop at this estimated relMSE; 0 = off
   Scene scene;
   View view;
 };

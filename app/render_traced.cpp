@@ -10,6 +10,7 @@
 #include "gl/denoiser.h"
 #include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
+#include "trace/convergence.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
 
@@ -27,6 +28,7 @@ TraceSettings settingsOf(const RenderRequest& r) {
   s.samplesPerPixel = r.spp;
   s.maxBounces = r.bounces;
   s.seed = r.seed;
+  s.skips = r.skips;
   return s;
 }
 
@@ -39,26 +41,38 @@ gl::DenoiseParams paramsOf(const RenderRequest& r) {
 using FrameRenderer =
     std::function<std::array<EyeImage, 2>(const std::array<EyeCamera, 2>&, uint32_t)>;
 
-// Renders r.frames frames (jitter from the frame index) and returns the per-eye means.
-std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRenderer& renderFrame) {
+// Renders r.frames frames (jitter from the frame index) and returns the per-eye means; with
+// r.converge > 0 it stops as soon as the estimated relMSE of the mean drops below it (the
+// view is static, so later frames would only refine a converged image).
+std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRenderer& renderFrame,
+                                       int& framesDone) {
   const int eyeCount = r.view.stereo ? 2 : 1;
   std::vector<EyeImage> sums(eyeCount);
+  ConvergenceMonitor monitor;
   const auto t0 = Clock::now();
   uint64_t rays = 0;
-  for (int f = 0; f < r.frames; ++f) {
+  for (framesDone = 0; framesDone < r.frames;) {
+    const int f = framesDone;
     const auto frame = renderFrame(eyeCameras(r.view, r.width, r.height, uint32_t(f)), uint32_t(f));
     for (int e = 0; e < eyeCount; ++e) {
       rays += frame[e].rays;
       accumulate(sums[e], frame[e], f);
+      if (r.converge > 0.0) monitor.add(e, frame[e].color, r.width);
     }
-    const double done = double(f + 1) / r.frames, elapsed = secondsSince(t0);
+    ++framesDone;
+    const double done = double(framesDone) / r.frames, elapsed = secondsSince(t0);
     reportProgress(done, rays / elapsed, elapsed * (1.0 - done) / done);
+    if (r.converge > 0.0 && monitor.converged(r.converge)) {
+      std::printf("converged after %d frames (estimated relMSE %.2e < %.2e): tracing stopped\n",
+                  framesDone, monitor.estimatedRelMse(), r.converge);
+      break;
+    }
   }
   return sums;
 }
 
-void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, double seconds,
-                    const std::string& stages) {
+void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, int frames,
+                    double seconds, const std::string& stages) {
   std::vector<std::string> written;
   std::vector<const EyeImage*> ptrs;
   uint64_t rays = 0, rejected = 0;
@@ -76,7 +90,7 @@ void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, d
   std::printf(
       "%s %dx%d x %zu eyes, %d spp x %d frames, %d bounces: %.2f s, %.2f Mrays/s, "
       "%llu samples rejected (NaN/Inf)\n",
-      r.mode.c_str(), r.width, r.height, eyes.size(), r.spp, r.frames, r.bounces, seconds,
+      r.mode.c_str(), r.width, r.height, eyes.size(), r.spp, frames, r.bounces, seconds,
       rays / seconds * 1e-6, (unsigned long long)rejected);
   std::printf("stages per frame: %s\nwrote:\n", stages.c_str());
   for (const std::string& p : written) std::printf("  %s\n", p.c_str());
@@ -130,8 +144,8 @@ struct GuideBuffers {
 
 int renderPathTracedMode(const RenderRequest& r) {
   const auto t0 = Clock::now();
-  const EmbreeScene embree(r.scene);
-  const LightSet lights(r.scene);
+  const EmbreeScene embree(r.scene, r.skips);
+  const LightSet lights(r.scene, r.skips);
   const TraceContext ctx{r.scene, embree, lights, settingsOf(r)};
   const double buildMs = 1e3 * secondsSince(t0);
   const int eyeCount = r.view.stereo ? 2 : 1;
@@ -146,23 +160,27 @@ int renderPathTracedMode(const RenderRequest& r) {
   }
   double traceMs = 0.0, denoiseMs = 0.0;
   const auto t1 = Clock::now();
-  const auto sums = accumulateFrames(r, [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
-    const auto ts = Clock::now();
-    std::array<EyeImage, 2> out;
-    for (int e = 0; e < eyeCount; ++e) out[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), f);
-    traceMs += 1e3 * secondsSince(ts);
-    if (guides) {
-      const auto td = Clock::now();
-      guides->denoise(eyes, out, eyeCount, denoiseMode, f);
-      denoiseMs += 1e3 * secondsSince(td);
-    }
-    return out;
-  });
+  int frames = 0;
+  const auto sums = accumulateFrames(
+      r,
+      [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
+        const auto ts = Clock::now();
+        std::array<EyeImage, 2> out;
+        for (int e = 0; e < eyeCount; ++e) out[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), f);
+        traceMs += 1e3 * secondsSince(ts);
+        if (guides) {
+          const auto td = Clock::now();
+          guides->denoise(eyes, out, eyeCount, denoiseMode, f);
+          denoiseMs += 1e3 * secondsSince(td);
+        }
+        return out;
+      },
+      frames);
   char stages[192];
   std::snprintf(stages, sizeof stages,
                 "BVH build %.0f ms (once), trace %.1f ms, denoise (%s) %.1f ms", buildMs,
-                traceMs / r.frames, r.denoise.c_str(), denoiseMs / r.frames);
-  writeAndReport(r, sums, secondsSince(t1), stages);
+                traceMs / frames, r.denoise.c_str(), denoiseMs / frames);
+  writeAndReport(r, sums, frames, secondsSince(t1), stages);
   if (guides) writeDenoised(r, guides->denoiser, eyeCount);
   return 0;
 }
@@ -185,29 +203,33 @@ int renderHybridMode(const RenderRequest& r) {
       maps[0].empty() ? nullptr : &maps[0], maps[1].empty() ? nullptr : &maps[1]};
   std::printf("sampling: %s (%s)\n", r.sampling.c_str(), describeSampleMaps(maps).c_str());
   const auto t1 = Clock::now();
-  const auto sums = accumulateFrames(r, [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
-    HybridFrameTimes t;
-    auto out = renderer.render(eyes, eyeCount, f, &t, mapPtrs);
-    total.gbufferMs += t.gbufferMs, total.readbackMs += t.readbackMs;
-    total.rebuildMs += t.rebuildMs, total.traceMs += t.traceMs;
-    total.outsideHits += t.outsideHits;
-    if (denoiser) {
-      const auto t0 = Clock::now();
-      const DenoiseInput left = makeDenoiseInput(out[0]);
-      const DenoiseInput right = makeDenoiseInput(out[eyeCount - 1]);
-      denoiser->run(renderer.gbuffer(), {left.eye, right.eye}, eyeCount, denoiseMode, f == 0);
-      denoiseMs += 1e3 * secondsSince(t0);
-    }
-    return out;
-  });
+  int frames = 0;
+  const auto sums = accumulateFrames(
+      r,
+      [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
+        HybridFrameTimes t;
+        auto out = renderer.render(eyes, eyeCount, f, &t, mapPtrs);
+        total.gbufferMs += t.gbufferMs, total.readbackMs += t.readbackMs;
+        total.rebuildMs += t.rebuildMs, total.traceMs += t.traceMs, total.refitMs += t.refitMs;
+        total.outsideHits += t.outsideHits;
+        if (denoiser) {
+          const auto t0 = Clock::now();
+          const DenoiseInput left = makeDenoiseInput(out[0]);
+          const DenoiseInput right = makeDenoiseInput(out[eyeCount - 1]);
+          denoiser->run(renderer.gbuffer(), {left.eye, right.eye}, eyeCount, denoiseMode, f == 0);
+          denoiseMs += 1e3 * secondsSince(t0);
+        }
+        return out;
+      },
+      frames);
   char stages[320];
-  const double n = r.frames;
+  const double n = frames;
   std::snprintf(stages, sizeof stages,
                 "G-buffer %.1f ms, read-back %.1f ms, hit rebuild %.1f ms, trace %.1f ms, "
                 "denoise (%s) %.1f ms (%llu shared-edge hits clamped)",
                 total.gbufferMs / n, total.readbackMs / n, total.rebuildMs / n, total.traceMs / n,
                 r.denoise.c_str(), denoiseMs / n, (unsigned long long)total.outsideHits);
-  writeAndReport(r, sums, secondsSince(t1), stages);
+  writeAndReport(r, sums, frames, secondsSince(t1), stages);
   if (denoiser) writeDenoised(r, *denoiser, eyeCount);
   return 0;
 }

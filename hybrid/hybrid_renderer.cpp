@@ -20,8 +20,8 @@ HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, bool hasLayerEx
     : scene_(scene),
       gpu_(scene),
       pass_(w, h, hasLayerExtension, gl::EyeRouting::Layered),
-      embree_(scene),
-      lights_(scene),
+      embree_(scene, settings.skips),
+      lights_(scene, settings.skips),
       ctx_{scene, embree_, lights_, settings} {}
 
 void HybridRenderer::drawGBuffer(const std::array<EyeCamera, 2>& eyes) {
@@ -37,6 +37,11 @@ std::array<EyeImage, 2> HybridRenderer::trace(
     uint32_t frame, HybridFrameTimes& t,
     const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
   std::array<EyeImage, 2> out;
+  if (!ctx_.settings.skips.refit) {  // a static scene never needs this (work_skips.h)
+    const auto t0 = Clock::now();
+    embree_.updateInstanceTransforms();
+    t.refitMs += msBetween(t0, Clock::now());
+  }
   for (int e = 0; e < eyeCount; ++e) {
     HybridEyeStats s;
     out[e] = traceFromGBuffer(ctx_, g[e], eyes[e], uint32_t(e), frame, sppMaps[e], &s);
@@ -77,7 +82,7 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
       auto images = render(cameras(uint32_t(f)), eyeCount, uint32_t(f), &t);
       onFrame(uint32_t(f), images);
       sum.gbufferMs += t.gbufferMs, sum.readbackMs += t.readbackMs;
-      sum.rebuildMs += t.rebuildMs, sum.traceMs += t.traceMs;
+      sum.rebuildMs += t.rebuildMs, sum.traceMs += t.traceMs, sum.refitMs += t.refitMs;
     }
   } else {
     // Stage times overlap here; gbufferMs counts only the time the CPU waited for GL.

@@ -21,9 +21,10 @@ struct HybridFrameTimes {
   double readbackMs = 0.0;  // GL -> CPU copy of the G-buffer layers
   double rebuildMs = 0.0;   // visibility records -> exact hits
   double traceMs = 0.0;     // path continuation
+  double refitMs = 0.0;     // BVH top-level re-commit (only with the 'refit' skip off)
   uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
-  double cpuMs() const { return rebuildMs + traceMs; }  // the tracer's share
-  double totalMs() const { return gbufferMs + readbackMs + rebuildMs + traceMs; }
+  double cpuMs() const { return refitMs + rebuildMs + traceMs; }  // the tracer's share
+  double totalMs() const { return gbufferMs + readbackMs + cpuMs(); }
 };
 
 class HybridRenderer {

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <limits>
 
 #include "hybrid/hit_rebuild.h"
 #include "trace/pixel_estimate.h"
@@ -14,6 +15,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr size_t kGrain = 256;  // pixels per task
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -28,7 +30,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   allocateEyeImage(img, g.width, g.height);
   const size_t n = size_t(g.width) * g.height;
   std::vector<RebuiltHit> hits(n);
-  std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0};
+  std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0};
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const auto t0 = Clock::now();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>&
@@ -48,11 +50,15 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
         enableFlushToZero();
-        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0;
+        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0, tileSkyHits = 0;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
           const glm::vec3 dir = cam.pixelRay(x, y);
           if (g.visibility[i].x == 0xFFFFFFFFu) {  // background: the environment, untraced
+            if (!ctx.settings.skips.skyPixels) {   // ... unless that skip is off
+              ++tileRays;
+              if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity).hit) ++tileSkyHits;
+            }
             img.color[i] = ctx.lights.environmentRadiance(dir);
             continue;
           }
@@ -70,6 +76,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
         rays += tileRays;
         rejected += tileRejected;
         traced += tileTraced;
+        skyHits += tileSkyHits;
       });
   img.rays = rays;
   img.rejectedSamples = rejected;
@@ -78,6 +85,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     stats->traceMs = msSince(t1);
     stats->outsideHits = outside;
     stats->tracedPixels = traced;
+    stats->skyRayHits = skyHits;
   }
   return img;
 }

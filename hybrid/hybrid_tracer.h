@@ -17,6 +17,9 @@ struct HybridEyeStats {
   double traceMs = 0.0;       // continuePath over all samples
   uint64_t outsideHits = 0;   // shared-edge raster/ray disagreements, clamped and counted
   uint64_t tracedPixels = 0;  // pixels with samples > 0 that saw a surface
+  // With the 'sky-pixels' skip off: background pixels whose Embree ray hit a surface
+  // (silhouette pixels where raster and ray disagree; the pixel still shows the sky).
+  uint64_t skyRayHits = 0;
 };
 
 // 'samplesPerPixel': optional per-pixel sample counts (a lens-matched density map or a

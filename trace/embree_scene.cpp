@@ -92,11 +92,11 @@ struct EmbreeScene::Impl {
     for (RTCScene m : meshScenes) rtcReleaseScene(m);
     if (device) rtcReleaseDevice(device);
   }
-  RTCScene buildMesh(size_t index, EmbreeStats& stats);
+  RTCScene buildMesh(size_t index, bool filterAlways, EmbreeStats& stats);
   void buildInstances();
 };
 
-RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
+RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeStats& stats) {
   const Mesh& mesh = scene.meshes[index];
   RTCScene s = rtcNewScene(device);
   rtcSetSceneBuildQuality(s, mesh.triangleCount() <= kMediumQualityLimit ? RTC_BUILD_QUALITY_MEDIUM
@@ -111,7 +111,8 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
   const Material& mat = scene.materials[mesh.material];
   FilterData& d = filterData[index];
   d = {&scene, &mesh, &mat, mat.alphaMode == AlphaMode::Mask, !mat.doubleSided};
-  if (d.alphaMask || d.cullBackFaces) {
+  if (d.alphaMask || d.cullBackFaces || filterAlways) {
+    ++stats.filteredMeshes;
     rtcSetGeometryUserData(g, &d);
     rtcSetGeometryIntersectFilterFunction(g, visibilityFilter);
     rtcSetGeometryOccludedFilterFunction(g, visibilityFilter);
@@ -143,14 +144,15 @@ void EmbreeScene::Impl::buildInstances() {
   rtcCommitScene(top);
 }
 
-EmbreeScene::EmbreeScene(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {
+EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
+    : impl_(std::make_unique<Impl>(scene)) {
   const auto t0 = std::chrono::steady_clock::now();
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(impl_->device, embreeError, nullptr);
   impl_->filterData.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m)
-    impl_->meshScenes.push_back(impl_->buildMesh(m, stats_));
+    impl_->meshScenes.push_back(impl_->buildMesh(m, !skips.anyHitFilter, stats_));
   impl_->buildInstances();
   stats_.meshBvhs = scene.meshes.size();
   stats_.instances = scene.instances.size();

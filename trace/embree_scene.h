@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "trace/work_skips.h"
 
 namespace photovr {
 
@@ -28,6 +29,7 @@ struct EmbreeStats {
   size_t instances = 0;
   bool alphaFilter = false;     // any-hit alpha test installed (scene has MASK materials)
   bool backFaceFilter = false;  // any-hit back-face culling (single-sided materials)
+  size_t filteredMeshes = 0;    // meshes with the any-hit filter installed
   std::string buildQuality;
   double buildMilliseconds = 0.0;
 };
@@ -70,8 +72,9 @@ struct ReplayCounts {
 
 class EmbreeScene {
  public:
-  // Keeps a reference to 'scene': it must outlive this object.
-  explicit EmbreeScene(const Scene& scene);
+  // Keeps a reference to 'scene': it must outlive this object. The any-hit filter goes only
+  // on meshes that need it (MASK or single-sided), unless skips.anyHitFilter is off.
+  explicit EmbreeScene(const Scene& scene, const WorkSkips& skips = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;

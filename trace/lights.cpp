@@ -54,7 +54,7 @@ std::array<float, 9> vertexKey(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
 
 }  // namespace
 
-LightSet::LightSet(const Scene& scene) : scene_(scene) {
+LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
   std::vector<float> weights;
   const float radius = sceneRadius(scene);
   for (const Light& l : scene.lights)
@@ -99,10 +99,48 @@ LightSet::LightSet(const Scene& scene) : scene_(scene) {
         const glm::vec3 d = sampleUniformSphere({(k % 8 + 0.5f) / 8.0f, (k / 8 + 0.5f) / 8.0f});
         avg += luminance(lookupEnvironment(scene.environment, d)) / 64.0f;
       }
+      environmentIndex_ = int(weights.size());
       weights.push_back(std::max(avg, 1e-6f) * kPi * kPi * r * r);
     }
   }
+  addPlaceholders(skips, weights);
   if (!weights.empty()) selection_ = Distribution1D(weights);
+}
+
+void LightSet::addPlaceholders(const WorkSkips& skips, std::vector<float>& weights) {
+  const Bounds b = scene_.worldBounds();
+  sceneCentre_ = b.empty() ? glm::vec3(0.0f) : b.center();
+  if (!skips.punctualLights && punctual_.empty()) placeholders_.push_back(Placeholder::Punctual);
+  if (!skips.areaLights && triangles_.empty()) placeholders_.push_back(Placeholder::Area);
+  if (!skips.environment && environmentIndex_ < 0)
+    placeholders_.push_back(Placeholder::Environment);
+  // A renderer that cannot know a light is dark gives it a typical share: the mean weight.
+  float mean = 1.0f;
+  if (!weights.empty()) {
+    mean = 0.0f;
+    for (float w : weights) mean += w / float(weights.size());
+  }
+  weights.insert(weights.end(), placeholders_.size(), mean);
+}
+
+LightSample LightSet::samplePlaceholder(Placeholder kind, const glm::vec3& point,
+                                        glm::vec2 u) const {
+  LightSample s;
+  if (kind == Placeholder::Environment) {
+    s.direction = sampleUniformSphere(u);
+    s.distance = kInfinity;
+    s.pdf = 1.0f / (4.0f * kPi);
+    return s;  // radiance 0: the shadow ray is still cast
+  }
+  const glm::vec3 d = sceneCentre_ - point;
+  const float dist = glm::length(d);
+  if (!(dist > 0.0f)) return s;
+  s.direction = d / dist;
+  s.distance = dist;
+  s.isDelta = kind == Placeholder::Punctual;
+  s.isArea = kind == Placeholder::Area;
+  s.pdf = 1.0f;  // nominal: the radiance is 0 whatever the density
+  return s;
 }
 
 LightSample LightSet::samplePunctual(const Light& l, const glm::vec3& point) const {
@@ -150,8 +188,11 @@ LightSample LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u)
   if (empty()) return {};
   const Distribution1D::Discrete pick = selection_.sampleDiscrete(uSelect);
   const int n = int(punctual_.size()), m = int(triangles_.size());
+  const int firstPlaceholder = n + m + (environmentIndex_ >= 0 ? 1 : 0);
   LightSample s;
-  if (pick.index < n) {
+  if (pick.index >= firstPlaceholder) {
+    s = samplePlaceholder(placeholders_[pick.index - firstPlaceholder], point, u);
+  } else if (pick.index < n) {
     s = samplePunctual(*punctual_[pick.index], point);
     s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;
   } else if (pick.index < n + m) {
@@ -185,8 +226,8 @@ uint32_t LightSet::lightIndex(uint32_t instance, uint32_t triangle) const {
 }
 
 float LightSet::pdfEnvironment(const glm::vec3& dir) const {
-  if (environment_.empty()) return 0.0f;
-  return selection_.pmf(selection_.size() - 1) * environment_.pdf(dir);
+  if (environmentIndex_ < 0) return 0.0f;
+  return selection_.pmf(environmentIndex_) * environment_.pdf(dir);
 }
 
 glm::vec3 LightSet::environmentRadiance(const glm::vec3& dir) const {

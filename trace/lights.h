@@ -11,6 +11,7 @@
 #include "core/scene.h"
 #include "trace/environment_sampling.h"
 #include "trace/sampling.h"
+#include "trace/work_skips.h"
 
 namespace photovr {
 
@@ -26,13 +27,15 @@ struct LightSample {
 
 class LightSet {
  public:
-  // Keeps references to 'scene' (and its environment).
-  explicit LightSet(const Scene& scene);
+  // Keeps references to 'scene' (and its environment). With a light-class skip turned off
+  // (work_skips.h), a class the scene lacks is represented by a dark placeholder.
+  explicit LightSet(const Scene& scene, const WorkSkips& skips = {});
 
   bool empty() const { return selection_.size() == 0; }
   bool hasEnvironment() const { return !environment_.empty(); }
   size_t punctualCount() const { return punctual_.size(); }
   size_t areaTriangleCount() const { return triangles_.size(); }
+  size_t placeholderCount() const { return placeholders_.size(); }
 
   LightSample sample(const glm::vec3& point, float uSelect, glm::vec2 u) const;
 
@@ -57,6 +60,10 @@ class LightSet {
   uint32_t lightIndex(uint32_t instance, uint32_t triangle) const;
   LightSample samplePunctual(const Light& light, const glm::vec3& point) const;
   LightSample sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u) const;
+  // A light class the scene lacks, sampled like a real light of that class but dark.
+  enum class Placeholder { Punctual, Area, Environment };
+  LightSample samplePlaceholder(Placeholder kind, const glm::vec3& point, glm::vec2 u) const;
+  void addPlaceholders(const WorkSkips& skips, std::vector<float>& weights);
 
   const Scene& scene_;
   std::vector<const Light*> punctual_;
@@ -64,7 +71,11 @@ class LightSet {
   std::vector<uint32_t> instanceSlots_;  // per instance: first entry in triangleSlots_, or kNoLight
   std::vector<uint32_t> triangleSlots_;  // per triangle of emissive instances: light or kNoLight
   EnvironmentSampler environment_;
-  Distribution1D selection_;  // over punctual_, then triangles_, then the environment
+  int environmentIndex_ = -1;  // in selection_; -1: no environment sampler
+  std::vector<Placeholder> placeholders_;
+  glm::vec3 sceneCentre_{0.0f};
+  // Over punctual_, then triangles_, then the environment, then placeholders_.
+  Distribution1D selection_;
 };
 
 }  // namespace photovr

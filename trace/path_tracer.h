@@ -22,6 +22,8 @@ struct TraceSettings {
   int maxBounces = 8;            // indirect bounces after the first hit (--bounces)
   int russianRouletteDepth = 5;  // thesis Algorithm 2: roulette from depth 5
   uint32_t seed = 0;
+  WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
+                    // their EmbreeScene and LightSet with the same skips
 };
 
 // Everything a path needs, built once per scene.
