@@ -42,6 +42,14 @@ glm::vec3 emission(const Scene& scene, const Material& mat, glm::vec2 uv0, glm::
          glm::vec3(sampleSlot(scene, mat.emissiveTexture, uv0, uv1, true, glm::vec4(1.0f)));
 }
 
+// The inverse transpose up to a positive scale (normals are normalised after it): the
+// cofactor matrix, whose columns are cross products of the transform's columns, times the
+// determinant's sign: what glm::inverse computes before its division and transpose.
+glm::mat3 normalMatrix(const glm::mat3& a) {
+  const glm::mat3 cofactor(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
+  return glm::dot(a[0], cofactor[0]) < 0.0f ? -cofactor : cofactor;
+}
+
 glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float len = glm::length(v);
   return len > 0.0f && std::isfinite(len) ? v / len : fallback;
@@ -100,7 +108,7 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   h.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
   glm::vec3 ng = unitGeometricNormal(p1 - p0, p2 - p0);
   const Interpolated in = interpolate(mesh, idx, b1, b2);
-  const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
+  const glm::mat3 normalToWorld = normalMatrix(glm::mat3(m));
   glm::vec3 ns = safeNormalize(normalToWorld * in.normal, ng);
   ns = applyNormalMap(scene, mat, in, glm::mat3(m), normalToWorld, ns);
   h.frontFace = glm::dot(ng, incoming) < 0.0f;
