@@ -187,6 +187,14 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
   out << "  alpha mask: " << (f.alphaMask ? "yes (any-hit filter)" : "no") << "\n";
   if (f.alphaBlend) out << "  alpha blend: yes\n";
   out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
+  out << "  any-hit filter: " << count(f.filteredMeshes) << " of " << count(scene.meshes.size())
+      << " meshes (MASK or single-sided; the rest have none)\n";
+  out << "  BVH refit: never (static scene: photovr plays no animation)\n";
+  out << "  sky pixels: "
+      << (f.environment ? "environment looked up, not traced (hybrid)"
+                        : std::string("black, not traced (hybrid)"))
+      << "\n";
+  out << "  (render --no-skip NAME|all turns these skips off, to measure them)\n";
 }
 
 void describeWarnings(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
@@ -213,6 +221,9 @@ SceneFeatures analyzeScene(const Scene& scene) {
   }
   countLights(f, scene);
   f.areaLights = f.emissiveTriangles > 0;
+  for (const Mesh& mesh : scene.meshes)  // as trace/embree_scene.cpp installs the filter
+    if (const Material* m = materialOf(scene, mesh))
+      f.filteredMeshes += m->alphaMode == AlphaMode::Mask || !m->doubleSided;
   f.environment = environmentEmits(scene.environment);
   size_t unused = 0;
   for (const bool u : used) unused += u ? 0 : 1;

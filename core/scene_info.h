@@ -20,6 +20,7 @@ struct SceneFeatures {
   bool doubleSided = false;     // a double-sided material is instanced
   size_t pointLights = 0, spotLights = 0, directionalLights = 0;
   size_t emissiveTriangles = 0;       // instanced (world) triangles with emission: area lights
+  size_t filteredMeshes = 0;          // meshes that need the any-hit filter (MASK, single-sided)
   std::vector<std::string> warnings;  // problems a person should hear about before rendering
 };
 
