@@ -1,0 +1,113 @@
+#include "app/bench_limits.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "gl/gbuffer_readback.h"
+#include "hybrid/hybrid_renderer.h"
+
+namespace photovr::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+template <typename F>
+double bestMs(int repeats, F&& f) {
+  double best = 1e30;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = Clock::now();
+    f();
+    best = std::min(best, msSince(t0));
+  }
+  return best;
+}
+
+// Consecutive rays (one pixel's paths) stay on one thread, as in the tracer's tiles. The
+// hit count is returned so that the traversal cannot be optimised away.
+uint64_t replayParallel(const EmbreeScene& embree, const std::vector<RecordedRay>& rays) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, rays.size(), 4096), uint64_t(0),
+      [&](const tbb::blocked_range<size_t>& r, uint64_t found) {
+        enableFlushToZero();
+        const ReplayCounts n = embree.replay(rays.data() + r.begin(), r.size());
+        return found + n.hits + n.blocked;
+      },
+      [](uint64_t a, uint64_t b) { return a + b; });
+}
+
+// Times 'frame' (which returns its tracer milliseconds and rays) against the replay of the
+// rays it cast, recorded on a first untimed call.
+template <typename Frame>
+void measure(TraceLimit& out, EmbreeScene& embree, Frame&& frame) {
+  RayRecorder recorder;
+  embree.setRecorder(&recorder);
+  frame();
+  embree.setRecorder(nullptr);
+  const std::vector<RecordedRay> rays = recorder.take();
+  double tracerMs = 1e30, rawMs = 1e30;
+  for (int k = 0; k < 3; ++k) {
+    const auto [ms, count] = frame();
+    tracerMs = std::min(tracerMs, ms);
+    out.rays = count;
+    rawMs = std::min(rawMs, bestMs(1, [&] { replayParallel(embree, rays); }));
+  }
+  out.photovrMraysPerSecond = double(out.rays) / (tracerMs * 1e3);
+  out.rawMraysPerSecond = double(rays.size()) / (rawMs * 1e3);
+}
+
+}  // namespace
+
+std::array<TraceLimit, 2> measureTraceLimits(const BenchScene& s, int w, int h,
+                                             gl::Context& context) {
+  HybridRenderer renderer(
+      *s.scene, w, h, context.hasExtension("GL_ARB_shader_viewport_layer_array"), TraceSettings{});
+  const auto cams = eyeCameras(s.view, w, h, 0);
+  std::array<TraceLimit, 2> out{TraceLimit{s.scene->name, "hybrid"},
+                                TraceLimit{s.scene->name, "pt"}};
+  renderer.render(cams, 2, 0, nullptr);  // warm-up: shader compilation
+  measure(out[0], renderer.embree(), [&] {
+    HybridFrameTimes t;
+    renderer.render(cams, 2, 0, &t);
+    return std::pair{t.cpuMs(), t.rays};
+  });
+  measure(out[1], renderer.embree(), [&] {
+    const auto t0 = Clock::now();
+    const EyeImage l = renderPathTraced(renderer.traceContext(), cams[0], 0, 0);
+    const EyeImage r = renderPathTraced(renderer.traceContext(), cams[1], 1, 0);
+    return std::pair{msSince(t0), l.rays + r.rays};
+  });
+  return out;
+}
+
+GlLimit measureGlLimits(int w, int h, gl::Context& context) {
+  const Scene empty;
+  const gl::SceneGpu gpu(empty);
+  gl::GBufferPass pass(w, h, context.hasExtension("GL_ARB_shader_viewport_layer_array"),
+                       gl::EyeRouting::Layered);
+  const auto cams = eyeCameras(View{}, w, h, 0);
+  std::array<glm::mat4, 2> vp;
+  for (int e = 0; e < 2; ++e) vp[e] = cams[e].unjitteredProjection() * cams[e].view();
+  GlLimit g{w, h};
+  g.emptyFrameMs = bestMs(6, [&] {
+    pass.render(gpu, cams, vp);
+    pass.finish();
+  });
+  g.readbackMs = bestMs(6, [&] {
+    for (int e = 0; e < 2; ++e) pass.read(e);
+  });
+  gl::GBufferReadback pbo(pass);
+  g.pboReadbackMs = bestMs(6, [&] {
+    pbo.start(2);
+    pbo.finish();
+  });
+  return g;
+}
+
+}  // namespace photovr::app
