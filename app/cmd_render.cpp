@@ -2,6 +2,7 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "app/hmd_sequence.h"
 #include "app/options.h"
 #include "app/render_request.h"
 #include "core/error.h"
@@ -35,6 +36,11 @@ const char* const kRenderHelp =
     "  --denoise off|temporal|full  SVGF denoiser in GL (default off; pt draws a G-buffer\n"
     "                         for its guides); writes\n"
     "                         denoised.png and per eye denoised.exr from the last frame\n"
+    "  --converge E           stop accumulating frames once the estimated relMSE of the\n"
+    "                         mean is below E (static view; default 0 = render every frame)\n"
+    "  --no-skip LIST         turn off skips of work the scene does not need, to measure\n"
+    "                         them: all, or any of punctual-lights, area-lights,\n"
+    "                         environment, any-hit, refit, sky-pixels (see photovr info)\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
     "  --out DIR              output folder (default out/<scene>)\n";
 
@@ -50,9 +56,10 @@ std::string defaultOutDir(const std::string& scene) {
 }  // namespace
 
 RenderRequest parseRenderRequest(const Args& args) {
-  std::set<std::string> valued = {"--scene", "--env",      "--width",   "--height",  "--backend",
-                                  "--out",   "--mode",     "--spp",     "--bounces", "--frames",
-                                  "--seed",  "--exposure", "--denoise", "--sampling"};
+  std::set<std::string> valued = {"--scene",   "--env",      "--width",   "--height",
+                                  "--backend", "--out",      "--mode",    "--spp",
+                                  "--bounces", "--frames",   "--seed",    "--exposure",
+                                  "--denoise", "--sampling", "--no-skip", "--converge"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())
@@ -71,6 +78,12 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
   r.sampling =
       o.choice("--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"});
+  r.converge = o.number("--converge", 0.0f, 0.0f, 1.0f);
+  try {
+    r.skips.disable(o.text("--no-skip", ""));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--no-skip: ") + e.what());
+  }
   if (r.denoise != "off" && r.mode == "gbuffer")
     throw UsageError("--denoise: needs a traced mode (hybrid or pt)");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
@@ -92,10 +105,14 @@ void reportProgress(double fraction, double raysPerSecond, double secondsLeft) {
 
 int runRender(const Args& args) {
   if (wantsHelp(args)) {
-    std::cout << kRenderHelp << kViewHelp;
+    std::cout << kRenderHelp << kViewHelp << kHmdRenderHelp;
     return 0;
   }
-  const RenderRequest request = parseRenderRequest(args);
+  Args rest = args;
+  const HmdSpec hmd = extractHmdOption(rest);
+  const HmdSequenceOptions sequence = extractHmdSequenceOptions(rest, hmd);
+  const RenderRequest request = parseRenderRequest(rest);
+  if (hmd.kind != "none") return renderHmdSequence(request, hmd, sequence);
   if (request.mode == "pt") return renderPathTracedMode(request);
   if (request.mode == "gbuffer") return renderGBufferMode(request);
   return renderHybridMode(request);

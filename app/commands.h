@@ -18,6 +18,7 @@ int runAb(const Args& args);
 int runReference(const Args& args);
 int runStress(const Args& args);
 int runBench(const Args& args);
+int runView(const Args& args);
 
 // A built-in scene name or a .gltf/.glb path; --env FILE replaces the environment.
 Scene loadSceneSpec(const std::string& spec);

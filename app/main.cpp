@@ -18,7 +18,9 @@ const char* const kUsage =
     "  ab            hybrid vs pure path tracing against a converged reference\n"
     "  reference     render or extend the cached converged reference of a scene\n"
     "  stress        run the numerical stress suite and print its report\n"
-    "  bench         run time against error of hybrid and pt on the built-in scenes\n";
+    "  bench         run time against error of hybrid and pt on the built-in scenes\n"
+    "  view          interactive window: the headset's panel image, re-projected every\n"
+    "                refresh, with an overlay (DK2, replay, pose script or desktop camera)\n";
 
 using Command = int (*)(const photovr::app::Args&);
 
@@ -29,7 +31,8 @@ int dispatch(int argc, char** argv) {
                                                    {"ab", photovr::app::runAb},
                                                    {"reference", photovr::app::runReference},
                                                    {"stress", photovr::app::runStress},
-                                                   {"bench", photovr::app::runBench}};
+                                                   {"bench", photovr::app::runBench},
+                                                   {"view", photovr::app::runView}};
   if (argc < 2) {
     std::cerr << kUsage;
     return 2;
@@ -40,9 +43,11 @@ int dispatch(int argc, char** argv) {
     return 0;
   }
   auto it = commands.find(name);
-  if (it == commands.end())
-    throw photovr::UsageError("unknown command '" + name +
-                              "' (expected render, info or export-scene)");
+  if (it == commands.end()) {
+    std::string names;
+    for (const auto& [command, run] : commands) names += (names.empty() ? "" : ", ") + command;
+    throw photovr::UsageError("unknown command '" + name + "' (expected one of " + names + ")");
+  }
   return it->second(photovr::app::Args(argv + 2, argv + argc));
 }
 

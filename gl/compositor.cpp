@@ -121,7 +121,11 @@ void Reprojector::run(unsigned colorArray, unsigned depthArray,
   api::BindTextureUnit(COMP_R_DEPTH, depthArray);
   const GLenum drawBuffer = GL_COLOR_ATTACHMENT0;
   api::NamedFramebufferDrawBuffers(fbo_, 1, &drawBuffer);
-  const GLsizei vertices = GLsizei(width_ + 1) * GLsizei(height_ + 1) * 6;
+  if (params_.gridStep < 1 || params_.gridStep > 64)
+    throw UsageError("reprojector: grid step must be in [1, 64]");
+  const int step = params_.gridStep;
+  const GLsizei vertices =
+      GLsizei((width_ + step - 1) / step + 1) * GLsizei((height_ + step - 1) / step + 1) * 6;
   for (int e = 0; e < eyeCount; ++e) {
     const EyeCamera& a = from[e];
     const EyeCamera& b = to[e];
@@ -129,7 +133,7 @@ void Reprojector::run(unsigned colorArray, unsigned depthArray,
     u.aEyeToBClip = b.projection() * b.view() * a.pose.toWorld();
     u.aFov = {a.fov.left, a.fov.right, a.fov.up, a.fov.down};
     u.aJitter = {a.jitter.x, a.jitter.y, a.znear, 0.0f};
-    u.params = {params_.depthRatio, params_.areaRatio, params_.fillDepthScale, 0.0f};
+    u.params = {params_.depthRatio, params_.areaRatio, params_.fillDepthScale, float(step)};
     u.size = {width_, height_, width_, height_};
     api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);
     api::BindBufferBase(GL_UNIFORM_BUFFER, COMP_REPROJECT_BINDING, uniforms_);
@@ -190,12 +194,20 @@ Distorter::Distorter(const LensParams& lens, int eyeWidth, int eyeHeight,
   api::ClearTexImage(panel_, 0, GL_RGBA, GL_FLOAT, nullptr);
   api::ClearTexImage(footprint_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   uniforms_ = makeUniforms(sizeof(shared::DistortUniforms));
+  // Bilinear with clamp-to-edge, as the debug path's explicit taps (whatever filter the
+  // eye array itself carries: the denoiser's and the re-projector's are GL_NEAREST).
+  api::CreateSamplers(1, &linearSampler_);
+  api::SamplerParameteri(linearSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  api::SamplerParameteri(linearSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  api::SamplerParameteri(linearSampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  api::SamplerParameteri(linearSampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 Distorter::~Distorter() {
   const GLuint t[] = {panel_, tanRG_, tanB_, footprint_};
   api::DeleteTextures(4, t);
   api::DeleteBuffers(1, &uniforms_);
+  api::DeleteSamplers(1, &linearSampler_);
 }
 
 glm::vec2 Distorter::lensCentre(int eye) const {
@@ -216,6 +228,7 @@ void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {
   if (footprint) api::ClearTexImage(footprint_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   program_.use();
   api::BindTextureUnit(COMP_D_EYE, eyeArray);
+  api::BindSampler(COMP_D_EYE, footprint ? 0 : linearSampler_);
   api::BindImageTexture(COMP_I_PANEL, panel_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   api::BindImageTexture(COMP_I_TAN_RG, tanRG_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   api::BindImageTexture(COMP_I_TAN_B, tanB_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -239,6 +252,7 @@ void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {
     api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                        GL_UNIFORM_BARRIER_BIT);
   }
+  api::BindSampler(COMP_D_EYE, 0);
 }
 
 std::vector<glm::vec4> Distorter::readPanel() const {

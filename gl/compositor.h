@@ -33,6 +33,10 @@ struct ReprojectParams {
   float depthRatio = 0.05f;     // far / near distance above 1 + this: depth discontinuity
   float areaRatio = 2.0f;       // B area / A area above this: the triangle is stretched
   float fillDepthScale = 0.5f;  // fill fragments' depth = this x their far vertex's depth
+  // One grid vertex every gridStep pixels of A. 1 is exact everywhere but costs a vertex
+  // per pixel, and llvmpipe shades vertices on one thread (bench_compositor measures it);
+  // 2-4 stay exact on planar surfaces and only coarsen depth edges.
+  int gridStep = 1;
 };
 
 struct ReprojectStats {
@@ -62,7 +66,9 @@ class Reprojector {
   void run(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
            const std::array<EyeCamera, 2>& to, int eyeCount = 2);
 
-  unsigned colorTexture() const { return color_; }  // RGBA16F, alpha = origin (see above)
+  unsigned colorTexture() const { return color_; }         // RGBA16F, alpha = origin (see above)
+  unsigned inputColorTexture() const { return inColor_; }  // what upload() filled
+  unsigned inputDepthTexture() const { return inDepth_; }
   unsigned depthTexture() const { return depth_; }  // D32F reversed-Z at pose B
   std::vector<glm::vec4> readColor(int eye) const;
   std::vector<float> readDepth(int eye) const;
@@ -108,14 +114,16 @@ class Distorter {
   Distorter& operator=(const Distorter&) = delete;
 
   // Distorts eyes [0, eyeCount) of a 2-layer float array (linear colour) onto the panel;
-  // with 'footprint' also records which eye-buffer texels were read (cleared first).
+  // with 'footprint' (a debug run) also records which eye-buffer texels were read (cleared
+  // first) and each pixel's tan-angles for readSamples(). Without it only the panel is
+  // written: the two RGBA32F debug images would double the pass's memory traffic.
   void run(unsigned eyeArray, int eyeCount = 2, bool footprint = false);
 
   unsigned panelTexture() const { return panel_; }  // RGBA16F, hResolution x vResolution
   int panelWidth() const { return lens_.hResolution; }
   int panelHeight() const { return lens_.vResolution; }
   std::vector<glm::vec4> readPanel() const;           // rows bottom-up
-  std::vector<DistortSample> readSamples() const;     // panel-sized
+  std::vector<DistortSample> readSamples() const;     // panel-sized; of the last debug run
   std::vector<uint8_t> readFootprint(int eye) const;  // eye-buffer sized, 1 = read
 
   // Lens centre of an eye's half in screen NDC and the screen-to-lens scale, as
@@ -128,7 +136,7 @@ class Distorter {
   int eyeWidth_, eyeHeight_;
   std::array<FovTangents, 2> fov_;
   Program program_;
-  unsigned uniforms_ = 0;
+  unsigned uniforms_ = 0, linearSampler_ = 0;
   unsigned panel_ = 0, tanRG_ = 0, tanB_ = 0, footprint_ = 0;
 };
 

@@ -95,7 +95,12 @@
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                           \
   X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                         \
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                               \
-  X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)
+  X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                         \
+  X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                 \
+  X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                             \
+  X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                             \
+  X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                       \
+  X(PFNGLBINDSAMPLERPROC, BindSampler)
 
 namespace photovr::gl::api {
 

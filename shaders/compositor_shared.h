@@ -38,7 +38,7 @@ struct ReprojectUniforms {
   mat4 aEyeToBClip;  // projection_B * view_B * inverse(view_A)
   vec4 aFov;         // A's tangents: left, right, up, down
   vec4 aJitter;      // A's jitter (xy), A's znear (z), -
-  vec4 params;       // depth ratio threshold, area ratio threshold, fill depth scale, -
+  vec4 params;       // depth ratio threshold, area ratio threshold, fill depth scale, grid step
   ivec4 size;        // A's width, height; B's width, height
 };
 

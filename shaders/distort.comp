@@ -49,6 +49,14 @@ float sampleChannel(vec2 t, int channel, bool mark) {
   return mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
 }
 
+// The same sample through the texture unit's bilinear filter (a GL_LINEAR sampler,
+// clamp to edge): one fetch instead of four. The debug run keeps the explicit taps above,
+// whose footprint the tests compare with hmd::distortionFootprint.
+float sampleFiltered(vec2 t, int channel) {
+  vec2 uv = vec2((t.x + u.fov.x) / (u.fov.x + u.fov.y), (t.y + u.fov.w) / (u.fov.z + u.fov.w));
+  return texture(eyeBuffer, vec3(uv, float(u.panel.w)))[channel];
+}
+
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, u.panel.xy))) return;
@@ -61,12 +69,17 @@ void main() {
   vec2 tR = tG * (1.0 + u.chroma.x + rsq * u.chroma.y);
   vec2 tB = tG * (1.0 + u.chroma.z + rsq * u.chroma.w);
   ivec2 o = p + ivec2(u.panel.z, 0);
-  imageStore(tanRG, o, vec4(tR, tG));
-  imageStore(tanB, o, vec4(tB, sees ? 1.0 : 0.0, 0.0));
+  bool mark = u.eyeSize.z != 0;  // debug run: footprint and tan-angles recorded
+  if (mark) {
+    imageStore(tanRG, o, vec4(tR, tG));
+    imageStore(tanB, o, vec4(tB, sees ? 1.0 : 0.0, 0.0));
+  }
   vec3 c = vec3(0.0);
   if (sees) {
-    bool mark = u.eyeSize.z != 0;
-    c = vec3(sampleChannel(tR, 0, mark), sampleChannel(tG, 1, mark), sampleChannel(tB, 2, mark));
+    if (mark)
+      c = vec3(sampleChannel(tR, 0, true), sampleChannel(tG, 1, true), sampleChannel(tB, 2, true));
+    else
+      c = vec3(sampleFiltered(tR, 0), sampleFiltered(tG, 1), sampleFiltered(tB, 2));
   }
   imageStore(panel, o, vec4(c, 1.0));
 }

@@ -1,8 +1,11 @@
 // Depth re-projection, vertex stage: a grid mesh over pose A's eye buffer displaced by its
 // depth and projected to pose B (dk2.md §7, "forward warp with a z-buffered grid mesh").
-// Vertices sit at A's pixel sample positions, plus a ring on the image border so the mesh
-// covers A's whole frustum: (W + 2) x (H + 2) vertices, (W + 1) x (H + 1) quads, drawn
-// without buffers (gl_VertexID = quad * 6 + corner).
+// Vertices sit at A's pixel sample positions, every params.w-th pixel (the grid step; the
+// last row and column always included), plus a ring on the image border so the mesh covers
+// A's whole frustum: (N + 2) x (M + 2) vertices for N = ceil(W / step), M = ceil(H / step),
+// (N + 1) x (M + 1) quads, drawn without buffers (gl_VertexID = quad * 6 + corner). Step 1
+// is one vertex per pixel; a coarser grid is exact on planar surfaces (perspective-correct
+// interpolation of A's texel is a homography) and approximates depth edges by its cells.
 //
 // A triangle whose depths differ by more than the ratio threshold AND whose area grows by
 // more than the area threshold in B spans a disocclusion: it is drawn flat with the colour
@@ -20,9 +23,16 @@ flat out vec3 vFill;            // farthest vertex's texel (xy); 1 = disocclusio
 flat out float vFillDepth;      // window depth of fill fragments
 
 ivec2 sizeA() { return u.size.xy; }
-// Position of grid vertex g in A's window coordinates (without jitter).
-vec2 gridCoord(ivec2 g) { return clamp(vec2(g) - 0.5, vec2(0.0), vec2(sizeA())); }
-ivec2 gridPixel(ivec2 g) { return clamp(g - 1, ivec2(0), sizeA() - 1); }
+int gridStep() { return int(u.params.w); }
+ivec2 gridNodes() { return (sizeA() + gridStep() - 1) / gridStep(); }  // N, M
+// The A pixel a grid vertex samples, and its position in A's window coordinates (without
+// jitter): the pixel's centre, or the image border for the ring (g = 0 and g > N).
+ivec2 gridPixel(ivec2 g) { return clamp((g - 1) * gridStep(), ivec2(0), sizeA() - 1); }
+vec2 gridCoord(ivec2 g) {
+  vec2 c = vec2(gridPixel(g)) + 0.5;
+  c = mix(c, vec2(0.0), lessThan(g, ivec2(1)));
+  return mix(c, vec2(sizeA()), greaterThan(g, gridNodes()));
+}
 
 // Homogeneous eye-space point of A: (tan, -1, depth / znear) ~ (tan * d, -d, 1), d the view
 // distance; reversed-Z depth 0 (infinite distance) is the point at infinity along the ray.
@@ -38,7 +48,7 @@ void main() {
   const ivec2 corners[6] = ivec2[6](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0),
                                     ivec2(1, 1), ivec2(0, 1));
   int quad = gl_VertexID / 6, corner = gl_VertexID % 6, first = corner < 3 ? 0 : 3;
-  ivec2 q = ivec2(quad % (sizeA().x + 1), quad / (sizeA().x + 1));
+  ivec2 q = ivec2(quad % (gridNodes().x + 1), quad / (gridNodes().x + 1));
   ivec2 g[3];
   vec4 c[3];
   float d[3];

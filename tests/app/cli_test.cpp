@@ -20,7 +20,8 @@ size_t lineCount(const std::string& s) {
 }
 
 TEST(Cli, HelpForEveryCommand) {
-  for (const char* cmd : {"--help", "render --help", "info --help", "export-scene --help"}) {
+  for (const char* cmd :
+       {"--help", "render --help", "info --help", "export-scene --help", "view --help"}) {
     const auto r = runPhotovr(cmd);
     EXPECT_EQ(r.status, 0) << cmd;
     EXPECT_NE(r.output.find("usage: photovr"), std::string::npos) << cmd;

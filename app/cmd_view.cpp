@@ -1,0 +1,349 @@
+// photovr view: the interactive app. A window shows the headset's panel image; the renderer
+// (view_renderer.h) makes frames at its own rate while every display refresh re-projects
+// the newest finished frame to the newest head pose, distorts it for the DK2's lenses and
+// draws the Dear ImGui overlay on top.
+//
+// Clocks: the DK2 and a live replay report poses on the host clock (hmd::hostSeconds);
+// a pose script runs from the moment the window opens. Frames start at the pose of "now";
+// each refresh is shown at the pose predicted kDisplayLatency ahead (dk2.md §4: LibOVR's
+// prediction target, mid-scan-out, ~20.9 ms after present).
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <imgui.h>
+
+#include "app/commands.h"
+#include "app/headset.h"
+#include "app/options.h"
+#include "app/view.h"
+#include "app/view_overlay.h"
+#include "app/view_renderer.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/scene_transform.h"
+#include "gl/denoiser.h"
+#include "gl/window_input.h"
+#include "hmd/dk2_driver.h"
+#include "hybrid/denoise_input.h"
+
+namespace photovr::app {
+namespace {
+
+constexpr double kDisplayLatency = 0.0209;
+
+const char* const kViewCommandHelp =
+    "usage: photovr view [options]\n"
+    "Opens a window showing the DK2 panel image: the renderer makes frames at its own rate,\n"
+    "the compositor re-projects the newest one to the newest head pose at every refresh.\n"
+    "  --scene NAME|FILE      atrium (default), cornell, spheres, or a .gltf/.glb file\n"
+    "  --env FILE             equirectangular .hdr/.exr environment\n"
+    "  --hmd dk2|replay FILE|sim FILE|none  head tracking (default none: the desktop\n"
+    "                         camera, right-drag to look, WASD/E/Q to move, Shift faster);\n"
+    "                         without a DK2, dk2 falls back to the desktop camera\n"
+    "  --width W --height H   per-eye render size (default 320x360)\n"
+    "  --window WxH           window size (default 960x540)\n"
+    "  --panel WxH            panel pixels (default: the window's; 1920x1080 with a DK2)\n"
+    "  --rotate 0|90|180|270  panel output rotation (default 0; the DK2 scans at 90)\n"
+    "  --mode hybrid|pt       renderer (default hybrid); --spp N (default 1), --bounces N\n"
+    "                         (default 4), --denoise off|temporal|full (default full),\n"
+    "                         --sampling uniform|lens-matched (default uniform),\n"
+    "                         --exposure E (default 1); all of these change in the overlay\n"
+    "  --no-reproject         show frames at the pose they were rendered at\n"
+    "  --no-overlay           no Dear ImGui overlay\n"
+    "  --out DIR              where F12 saves the panel image (default .)\n"
+    "  --frames N             exit after N refreshes that showed a rendered frame\n"
+    "  --screenshot FILE      with --frames: save the last refresh, overlay included (PNG)\n";
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+glm::ivec2 parseSize(const Options& o, const std::string& name, glm::ivec2 fallback) {
+  if (!o.has(name)) return fallback;
+  const std::string t = o.text(name, "");
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(t.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 2 || h < 1 ||
+      w > 8192 || h > 8192)
+    throw UsageError(name + ": '" + t + "' is not WIDTHxHEIGHT within 2..8192");
+  return {w, h};
+}
+
+struct ViewConfig {
+  Scene scene;
+  View view;
+  HmdSpec hmd;
+  int width = 320, height = 360, rotation = 0, frames = 0;
+  glm::ivec2 window{960, 540}, panel{0, 0};
+  FrameSettings settings;
+  int denoise = 2;  // index into kDenoiseModes
+  bool reproject = true, overlay = true;
+  float exposure = 1.0f;
+  std::string outDir = ".", screenshot;
+};
+
+const char* const kDenoiseModes[] = {"off", "temporal", "full"};
+const char* const kModes[] = {"hybrid", "pt"};
+
+ViewConfig parseViewConfig(Args args) {
+  ViewConfig c;
+  c.hmd = extractHmdOption(args);
+  std::set<std::string> valued = {"--scene",    "--env",     "--width",   "--height",
+                                  "--window",   "--panel",   "--rotate",  "--mode",
+                                  "--spp",      "--bounces", "--denoise", "--sampling",
+                                  "--exposure", "--out",     "--frames",  "--screenshot"};
+  valued.insert(kViewOptions.begin(), kViewOptions.end());
+  const Options o(args, valued, {"--no-reproject", "--no-overlay"});
+  if (!o.positional().empty())
+    throw UsageError("view: unexpected argument '" + o.positional()[0] + "'");
+  c.width = o.integer("--width", 320, 8, 4096);
+  c.height = o.integer("--height", 360, 8, 4096);
+  c.window = parseSize(o, "--window", c.window);
+  c.panel = parseSize(o, "--panel", {0, 0});
+  if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");
+  c.rotation = gl::checkPanelRotation(o.integer("--rotate", 0, 0, 270));
+  c.settings.pathTraced = o.choice("--mode", "hybrid", {"hybrid", "pt"}) == "pt";
+  c.settings.spp = o.integer("--spp", 1, 1, 64);
+  c.settings.bounces = o.integer("--bounces", 4, 0, 16);
+  c.settings.lensMatched =
+      o.choice("--sampling", "uniform", {"uniform", "lens-matched"}) == "lens-matched";
+  c.denoise = int(gl::parseDenoiseMode(o.text("--denoise", "full")));
+  c.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
+  c.reproject = !o.has("--no-reproject");
+  c.overlay = !o.has("--no-overlay");
+  c.outDir = o.text("--out", ".");
+  c.frames = o.integer("--frames", 0, 1, 1000000);
+  c.screenshot = o.text("--screenshot", "");
+  if (!c.screenshot.empty() && !c.frames)
+    throw UsageError("--screenshot: needs --frames N (it saves the last refresh)");
+  c.scene = loadSceneSpec(o.text("--scene", "atrium"));
+  applyEnvironmentOption(c.scene, o.text("--env", ""));
+  c.view = resolveView(c.scene, o);
+  if (!c.view.stereo) throw UsageError("view: --eyes mono is not a headset view");
+  c.view.head = recenterOnView(c.scene, c.view.head);
+  return c;
+}
+
+// The head pose source and its clock: seconds on the clock its poses are asked in.
+struct Head {
+  std::unique_ptr<hmd::HeadPoseSource> source;
+  hmd::DesktopHeadset* desktop = nullptr;  // set when the desktop camera is used
+  bool hostClock = false;
+  double start = hmd::hostSeconds();
+  double now() const { return hostClock ? hmd::hostSeconds() : hmd::hostSeconds() - start; }
+};
+
+Head openHead(const HmdSpec& spec) {
+  Head h;
+  std::string why;
+  h.source = openHeadPoseSource(spec, true, &why);
+  h.hostClock = spec.kind == "dk2" || spec.kind == "replay";
+  if (!h.source) {
+    if (spec.kind == "dk2") std::cerr << "photovr view: " << why << "; using the desktop camera\n";
+    auto desktop = std::make_unique<hmd::DesktopHeadset>();
+    h.desktop = desktop.get();
+    h.source = std::move(desktop);
+    h.hostClock = false;
+  }
+  return h;
+}
+
+hmd::DesktopInput desktopInput(const gl::WindowInput& in, float dt) {
+  hmd::DesktopInput d;
+  d.mouseDelta = in.mouseDelta;
+  d.forward = in.forward, d.back = in.back, d.left = in.left, d.right = in.right;
+  d.up = in.up, d.down = in.down, d.fast = in.fast;
+  d.dt = dt;
+  return d;
+}
+
+// What the overlay shows, smoothed where it jitters.
+struct Stats {
+  double displayMs = 0.0, compositorMs = 0.0, denoiseMs = 0.0;
+  FinishedFrame last;  // images dropped; times and settings kept
+  double meanSpp = 0.0;
+  int rendered = 0;
+};
+
+double meanSamples(const EyeImage& e) {
+  double s = 0.0;
+  for (uint32_t n : e.samples) s += n;
+  return e.samples.empty() ? 0.0 : s / double(e.samples.size());
+}
+
+void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("photovr", nullptr,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::Text("display %.1f ms (%.0f Hz), compositor %.1f ms", s.displayMs,
+              s.displayMs > 0 ? 1e3 / s.displayMs : 0.0, s.compositorMs);
+  const FinishedFrame& f = s.last;
+  ImGui::Text("frame %u (%d done): %.0f ms", f.index, s.rendered, f.totalMs + s.denoiseMs);
+  ImGui::Text("  G-buffer %.1f, read-back %.1f, trace %.1f, denoise %.1f ms", f.gbufferMs,
+              f.readbackMs, f.traceMs, s.denoiseMs);
+  ImGui::Text("  %s, %.2f spp mean, %d bounces", f.settings.pathTraced ? "pt" : "hybrid", s.meanSpp,
+              f.settings.bounces);
+  int mode = c.settings.pathTraced ? 1 : 0;
+  if (ImGui::Combo("mode", &mode, kModes, 2)) c.settings.pathTraced = mode == 1;
+  ImGui::SliderInt("spp", &c.settings.spp, 1, 64);
+  ImGui::SliderInt("bounces", &c.settings.bounces, 0, 16);
+  ImGui::Combo("denoiser", &c.denoise, kDenoiseModes, 3);
+  ImGui::Checkbox("lens-matched sampling (hybrid)", &c.settings.lensMatched);
+  ImGui::Checkbox("re-projection", &c.reproject);
+  ImGui::SliderFloat("exposure", &c.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  ImGui::TextUnformatted(head.source->status().c_str());
+  ImGui::TextUnformatted("F12 saves the panel image");
+  ImGui::End();
+}
+
+// The GL objects of a session, created once the window's context is current.
+struct Session {
+  ViewConfig& c;
+  std::unique_ptr<gl::Context> context;
+  Head head;
+  std::unique_ptr<ViewRenderer> renderer;
+  std::unique_ptr<gl::Denoiser> denoiser;
+  std::unique_ptr<HeadsetCompositor> compositor;
+  std::unique_ptr<ViewOverlay> overlay;
+  std::optional<FinishedFrame> shown;
+  bool shownDenoised = false, resetHistory = true;
+  int saved = 0;
+  Stats stats;
+
+  explicit Session(ViewConfig& config) : c(config) {
+    head = openHead(c.hmd);  // bad pose files are reported before a window opens
+    gl::ContextOptions o;
+    o.backend = gl::Backend::GLFW;
+    o.windowWidth = c.window.x, o.windowHeight = c.window.y;
+    o.visible = true;
+    o.title = "photovr view";
+    context = gl::Context::create(o);
+    if (c.panel.x == 0)
+      c.panel = c.hmd.kind == "dk2" && !head.desktop ? glm::ivec2(1920, 1080)
+                                                     : glm::ivec2(c.window.x & ~1, c.window.y);
+    renderer = std::make_unique<ViewRenderer>(
+        c.scene, c.width, c.height, context->hasExtension("GL_ARB_shader_viewport_layer_array"));
+    gl::DenoiseParams params;
+    denoiser = std::make_unique<gl::Denoiser>(c.width, c.height, params);
+    compositor =
+        std::make_unique<HeadsetCompositor>(c.width, c.height, c.panel.x, c.panel.y, c.rotation);
+    if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
+  }
+
+  Pose headPose(double t) { return composePose(c.view.head, head.source->pose(t)); }
+
+  // A finished frame: denoised (its G-buffer is still the renderer's) or uploaded as is.
+  void accept(FinishedFrame f) {
+    const auto mode = gl::DenoiseMode(c.denoise);
+    const auto t0 = Clock::now();
+    if (mode != gl::DenoiseMode::Off) {
+      const DenoiseInput l = makeDenoiseInput(f.images[0]), r = makeDenoiseInput(f.images[1]);
+      denoiser->run(renderer->gbuffer(), {l.eye, r.eye}, 2, mode, resetHistory);
+      resetHistory = false;
+      shownDenoised = true;
+    } else {
+      for (int e = 0; e < 2; ++e) {
+        std::vector<glm::vec4> color(f.images[e].color.size());
+        for (size_t i = 0; i < color.size(); ++i) color[i] = glm::vec4(f.images[e].color[i], 1.0f);
+        compositor->upload(e, color, f.images[e].depth);
+      }
+      shownDenoised = false;
+      resetHistory = true;
+    }
+    gl::waitForGpu();
+    stats.denoiseMs = msSince(t0);
+    stats.meanSpp = 0.5 * (meanSamples(f.images[0]) + meanSamples(f.images[1]));
+    ++stats.rendered;
+    shown = std::move(f);
+    stats.last = *shown;
+    stats.last.images = {};
+  }
+
+  void composite(const glm::ivec2& framebuffer) {
+    const auto t0 = Clock::now();
+    const auto to = headEyes(headPose(head.now() + kDisplayLatency), c.width, c.height, {});
+    if (shownDenoised)
+      compositor->run(denoiser->linearTexture(), denoiser->depthTexture(), shown->eyes, to,
+                      c.exposure, c.reproject);
+    else
+      compositor->runUploaded(shown->eyes, to, c.exposure, c.reproject);
+    compositor->output().present(framebuffer.x, framebuffer.y);
+    gl::waitForGpu();
+    stats.compositorMs = msSince(t0);
+  }
+
+  void savePanel() {
+    char name[48];
+    std::snprintf(name, sizeof name, "/photovr-view-%04d.png", saved++);
+    const gl::PanelOutput& out = compositor->output();
+    writeImage(c.outDir + name, flipToImage(out.read(), out.width(), out.height()));
+    std::printf("saved %s%s\n", c.outDir.c_str(), name);
+  }
+};
+
+int runSession(ViewConfig& c) {
+  Session s(c);
+  gl::WindowInputReader input(*s.context);
+  std::printf("view: %s, %s; eyes %dx%d, panel %dx%d, window %dx%d\n",
+              s.context->renderer().c_str(), s.head.source->status().c_str(), c.width, c.height,
+              c.panel.x, c.panel.y, c.window.x, c.window.y);
+  auto last = Clock::now();
+  int shownFrames = 0;
+  uint32_t started = 0;
+  FrameSettings previous = c.settings;
+  while (!s.context->shouldClose()) {
+    const gl::WindowInput in = input.poll();
+    if (in.quitPressed) break;
+    const double dt = msSince(last);
+    last = Clock::now();
+    s.stats.displayMs = 0.9 * s.stats.displayMs + 0.1 * dt;
+    if (s.head.desktop && !(s.overlay && s.overlay->wantsMouse()))
+      s.head.desktop->handle(desktopInput(in, float(dt * 1e-3)));
+    if (auto f = s.renderer->take()) s.accept(std::move(*f));
+    if (!s.renderer->busy()) {
+      if (c.settings.pathTraced != previous.pathTraced) s.resetHistory = true;
+      previous = c.settings;
+      s.renderer->start(
+          headEyes(s.headPose(s.head.now()), c.width, c.height, haltonJitter(started++)),
+          c.settings);
+    }
+    if (s.shown) s.composite(in.framebufferSize);
+    if (s.overlay) {
+      s.overlay->newFrame();
+      drawOverlay(c, s.stats, s.head);
+      s.overlay->render();
+    }
+    if (in.savePressed && s.shown) s.savePanel();
+    if (s.shown && c.frames && ++shownFrames >= c.frames) {
+      if (!c.screenshot.empty()) {
+        const glm::ivec2 fb = in.framebufferSize;
+        writeImage(c.screenshot, flipToImage(gl::readDefaultFramebuffer(fb.x, fb.y), fb.x, fb.y));
+        std::printf("wrote %s\n", c.screenshot.c_str());
+      }
+      break;
+    }
+    s.context->swapBuffers();
+  }
+  std::printf("view: %d frames rendered, last %.0f ms; compositor %.1f ms per refresh\n",
+              s.stats.rendered, s.stats.last.totalMs, s.stats.compositorMs);
+  return 0;
+}
+
+}  // namespace
+
+int runView(const Args& args) {
+  if (wantsHelp(args)) {
+    std::cout << kViewCommandHelp << kViewHelp;
+    return 0;
+  }
+  ViewConfig config = parseViewConfig(args);
+  return runSession(config);
+}
+
+}  // namespace photovr::app

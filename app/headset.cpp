@@ -1,0 +1,180 @@
+#include "app/headset.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "hmd/fusion.h"
+#include "hmd/recording.h"
+#include "hmd/sensor_stream.h"
+
+namespace photovr::app {
+namespace {
+
+// A recording decoded and fused up front: orientation over device time, for headless runs
+// that must not depend on how fast the replay is read.
+class RecordedTrack final : public hmd::HeadPoseSource {
+ public:
+  explicit RecordedTrack(const std::string& path) : path_(path) {
+    hmd::SensorStream stream;
+    hmd::OrientationFilter filter;
+    for (const hmd::HidRecord& r : hmd::readRecording(path)) {
+      if (r.kind != hmd::HidRecord::Input) continue;
+      for (const hmd::ImuSample& s : stream.push(r.bytes, double(r.hostNs) * 1e-9)) {
+        filter.update(s);
+        keys_.push_back({filter.time(), glm::quat(filter.orientation())});
+      }
+    }
+    if (keys_.empty()) throw InputError(path, "no sensor report in the recording");
+    const double t0 = keys_.front().t;
+    for (Key& k : keys_) k.t -= t0;
+  }
+  Pose pose(double t) override {
+    auto it = std::upper_bound(keys_.begin(), keys_.end(), t,
+                               [](double v, const Key& k) { return v < k.t; });
+    Pose p;
+    p.orientation = (it == keys_.begin() ? it : it - 1)->q;
+    return p;
+  }
+  std::string status() const override { return "replay " + path_ + " (decoded up front)"; }
+
+ private:
+  struct Key {
+    double t;
+    glm::quat q;
+  };
+  std::string path_;
+  std::vector<Key> keys_;
+};
+
+}  // namespace
+
+HmdSpec extractHmdOption(Args& args) {
+  HmdSpec spec;
+  auto it = std::find(args.begin(), args.end(), "--hmd");
+  if (it == args.end()) return spec;
+  if (it + 1 == args.end())
+    throw UsageError("--hmd: missing value (dk2, replay FILE, sim FILE, none)");
+  spec.kind = *(it + 1);
+  size_t taken = 2;
+  if (spec.kind == "replay" || spec.kind == "sim") {
+    if (it + 2 == args.end() || (it + 2)->rfind("--", 0) == 0)
+      throw UsageError("--hmd " + spec.kind + ": missing FILE");
+    spec.file = *(it + 2);
+    taken = 3;
+  } else if (spec.kind != "dk2" && spec.kind != "none") {
+    throw UsageError("--hmd: '" + spec.kind + "' is not one of dk2, replay FILE, sim FILE, none");
+  }
+  args.erase(it, it + long(taken));
+  if (std::find(args.begin(), args.end(), "--hmd") != args.end())
+    throw UsageError("--hmd: given twice");
+  return spec;
+}
+
+std::unique_ptr<hmd::HeadPoseSource> openHeadPoseSource(const HmdSpec& spec, bool interactive,
+                                                        std::string* why) {
+  if (spec.kind == "sim") return std::make_unique<hmd::SimHeadset>(hmd::loadPoseScript(spec.file));
+  if (spec.kind == "replay") {
+    if (!interactive) return std::make_unique<RecordedTrack>(spec.file);
+    hmd::readRecording(spec.file);  // malformed files: an InputError here, not in a thread
+    auto device =
+        std::make_unique<hmd::ReplayDevice>(spec.file, hmd::ReplayDevice::Pacing::Recorded);
+    return std::make_unique<hmd::Dk2HeadTracker>(std::move(device));
+  }
+  if (spec.kind == "dk2") return hmd::openDk2HeadTracker(why);
+  return nullptr;
+}
+
+Pose composePose(const Pose& base, const Pose& tracked) {
+  Pose p;
+  p.position = base.position + base.orientation * tracked.position;
+  p.orientation = glm::normalize(base.orientation * tracked.orientation);
+  return p;
+}
+
+std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::vec2 jitter) {
+  StereoRig rig;
+  rig.head = head;
+  return {rig.eye(Eye::Left, width, height, jitter), rig.eye(Eye::Right, width, height, jitter)};
+}
+
+gl::LensParams lensParamsOf(const hmd::LensModel& m) {
+  gl::LensParams p;
+  for (int i = 0; i < 11; ++i) p.k[i] = float(m.lens.k[i]);
+  p.maxR = float(m.lens.maxR);
+  p.metresPerTanAngle = float(m.lens.metresPerTanAngle);
+  for (int i = 0; i < 4; ++i) p.chroma[i] = float(m.lens.chroma[i]);
+  p.panelWidthM = float(m.panel.widthM);
+  p.panelHeightM = float(m.panel.heightM);
+  p.verticalCentreM = float(m.panel.verticalCentreM);
+  p.lensSeparationM = float(m.panel.lensSeparationM);
+  p.hResolution = m.panel.hResolution;
+  p.vResolution = m.panel.vResolution;
+  return p;
+}
+
+namespace {
+
+gl::LensParams panelLens(int panelWidth, int panelHeight) {
+  hmd::LensModel model;  // DK2 defaults (dk2.md §2, §6); only the pixel count changes
+  model.panel.hResolution = panelWidth;
+  model.panel.vResolution = panelHeight;
+  return lensParamsOf(model);
+}
+
+std::array<FovTangents, 2> dk2Fov() {
+  const FovTangents left = FovTangents::dk2LeftEye();
+  return {left, left.mirrored()};
+}
+
+gl::ReprojectParams gridParams() {
+  gl::ReprojectParams p;
+  p.gridStep = HeadsetCompositor::kGridStep;
+  return p;
+}
+
+}  // namespace
+
+HeadsetCompositor::HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight,
+                                     int rotation)
+    : reprojector_(eyeWidth, eyeHeight, gridParams()),
+      distorter_(panelLens(panelWidth, panelHeight), eyeWidth, eyeHeight, dk2Fov()),
+      output_(panelWidth, panelHeight, rotation) {}
+
+void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
+                            const std::array<EyeCamera, 2>& from,
+                            const std::array<EyeCamera, 2>& to, float exposure, bool reproject) {
+  if (reproject) {
+    reprojector_.run(colorArray, depthArray, from, to);
+    distorter_.run(reprojector_.colorTexture());
+  } else {
+    distorter_.run(colorArray);
+  }
+  output_.run(distorter_.panelTexture(), exposure);
+}
+
+void HeadsetCompositor::upload(int eye, const std::vector<glm::vec4>& color,
+                               const std::vector<float>& depth) {
+  const size_t n = size_t(reprojector_.width()) * reprojector_.height();
+  if (color.size() != n || depth.size() != n) throw UsageError("compositor: eye image size");
+  reprojector_.upload(eye, color.data(), depth.data());
+}
+
+void HeadsetCompositor::runUploaded(const std::array<EyeCamera, 2>& from,
+                                    const std::array<EyeCamera, 2>& to, float exposure,
+                                    bool reproject) {
+  run(reprojector_.inputColorTexture(), reprojector_.inputDepthTexture(), from, to, exposure,
+      reproject);
+}
+
+Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height) {
+  Image8 image(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::u8vec4 c = pixels[size_t(height - 1 - y) * width + x];
+      uint8_t* p = image.at(x, y);
+      p[0] = c.r, p[1] = c.g, p[2] = c.b;
+    }
+  return image;
+}
+
+}  // namespace photovr::app

@@ -1,0 +1,272 @@
+// photovr render --hmd: a sequence rendered at the head poses of a pose source and shown
+// through the headset compositor, headless.
+//
+// Timing model (script time, seconds from the pose source's start; dk2: the host clock):
+//   frame k starts rendering at  t_render(k)  = k / fps            (--fps, default 30)
+//   and is displayed at          t_display(k) = t_render(k) + L    (--latency-ms L)
+// L defaults to one renderer frame (1 / fps): the frame started at t_render(k) is finished
+// when frame k + 1 starts, and is shown then. The frame is rendered at the pose of
+// t_render(k) (the pose the renderer knew when it started) and re-projected to the pose of
+// t_display(k) — what the compositor does with the newest prediction at scan-out. Display
+// poses are unjittered; rendered frames carry the Halton jitter of their index.
+#include "app/hmd_sequence.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "app/gl_context.h"
+#include "app/options.h"
+#include "app/sample_maps.h"
+#include "app/trace_output.h"
+#include "core/error.h"
+#include "gl/denoiser.h"
+#include "hmd/dk2_driver.h"
+#include "hybrid/denoise_input.h"
+#include "hybrid/hybrid_renderer.h"
+
+namespace photovr::app {
+
+const char* const kHmdRenderHelp =
+    "headset sequence (renders --frames N frames through the headset compositor):\n"
+    "  --hmd sim FILE         head poses from a pose script (CSV t,x,y,z,yaw,pitch,roll;\n"
+    "                         seconds, metres, degrees), relative to the scene camera\n"
+    "  --hmd replay FILE      orientation from a recorded DK2 HID stream (hmd/recording.h)\n"
+    "  --hmd dk2              a DK2 over hidapi;  --hmd none: a plain render (default)\n"
+    "  --fps F                renderer rate: frame k is rendered at the pose of t = k / F\n"
+    "                         (default 30)\n"
+    "  --latency-ms L         and re-projected to the pose of t + L (default 1000 / F)\n"
+    "  --panel WxH            panel pixels (default 1920x1080, the DK2's)\n"
+    "  --rotate 0|90|180|270  panel output rotation (default 0; the DK2 scans at 90)\n"
+    "  writes per frame NNNN_left.png, NNNN_right.png (undistorted, as rendered) and\n"
+    "  NNNN_panel.png (re-projected, distorted), and hmd_frames.csv (times, poses,\n"
+    "  disoccluded fractions)\n";
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Pulls "--name value" out of 'args' into 'taken'.
+void takeOption(Args& args, const std::string& name, Args& taken) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != name) continue;
+    if (i + 1 >= args.size()) throw UsageError(name + ": missing value");
+    taken.insert(taken.end(), {args[i], args[i + 1]});
+    args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
+    return;
+  }
+}
+
+glm::ivec2 parsePanelSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x')
+    throw UsageError("--panel: '" + text + "' is not WIDTHxHEIGHT");
+  if (w < 2 || w > 8192 || w % 2 || h < 1 || h > 8192)
+    throw UsageError("--panel: " + text + " needs an even width in [2, 8192], height in [1, 8192]");
+  return {w, h};
+}
+
+TraceSettings settingsOf(const RenderRequest& r) {
+  TraceSettings s;
+  s.samplesPerPixel = r.spp;
+  s.maxBounces = r.bounces;
+  s.seed = r.seed;
+  return s;
+}
+
+std::vector<glm::vec4> withAlpha(const std::vector<glm::vec3>& c) {
+  std::vector<glm::vec4> out(c.size());
+  for (size_t i = 0; i < c.size(); ++i) out[i] = glm::vec4(c[i], 1.0f);
+  return out;
+}
+
+std::string frameName(const RenderRequest& r, int k, const char* what) {
+  char name[32];
+  std::snprintf(name, sizeof name, "/%04d_%s.png", k, what);
+  return r.outDir + name;
+}
+
+// The pose source's clock for frame k (see the timing model above).
+struct FrameTimes {
+  double render, display;
+};
+
+}  // namespace
+
+HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd) {
+  Args taken;
+  for (const char* name : {"--fps", "--latency-ms", "--rotate", "--panel"})
+    takeOption(args, name, taken);
+  HmdSequenceOptions o;
+  if (taken.empty()) return o;
+  if (hmd.kind == "none") throw UsageError(taken[0] + ": needs --hmd sim|replay|dk2");
+  const Options opts(taken, {"--fps", "--latency-ms", "--rotate", "--panel"}, {});
+  o.fps = opts.number("--fps", 30.0f, 0.1f, 1000.0f);
+  o.latencyMs = opts.number("--latency-ms", -1.0f, 0.0f, 10000.0f);
+  o.rotation = gl::checkPanelRotation(opts.integer("--rotate", 0, 0, 270));
+  if (opts.has("--panel")) {
+    const glm::ivec2 p = parsePanelSize(opts.text("--panel", ""));
+    o.panelWidth = p.x, o.panelHeight = p.y;
+  }
+  return o;
+}
+
+namespace {
+
+std::unique_ptr<gl::Denoiser> makeDenoiser(const RenderRequest& r) {
+  if (gl::parseDenoiseMode(r.denoise) == gl::DenoiseMode::Off) return nullptr;
+  gl::DenoiseParams params;
+  params.exposure = r.exposure;
+  return std::make_unique<gl::Denoiser>(r.width, r.height, params);
+}
+
+// hmd_frames.csv, written beside its destination and renamed at the end, like every image
+// (core/image_io).
+class FrameLog {
+ public:
+  explicit FrameLog(const std::string& dir)
+      : path_(dir + "/hmd_frames.csv"), temp_(path_ + ".tmp") {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    out_.open(temp_);
+    if (!out_) throw InputError(path_, "cannot write");
+    out_ << "frame,t_render,t_display,rotation_delta_deg,move_delta_m,disoccluded_left,"
+            "disoccluded_right,render_ms,compositor_ms\n";
+  }
+  std::ostream& row() { return out_; }
+  void close() {
+    out_.close();
+    std::error_code ec;
+    std::filesystem::rename(temp_, path_, ec);
+    if (!out_ || ec) throw InputError(path_, "cannot write");
+  }
+
+ private:
+  std::string path_, temp_;
+  std::ofstream out_;
+};
+
+// One sequence: the renderer, the denoiser and the compositor on one context.
+class HmdSequence {
+ public:
+  HmdSequence(const RenderRequest& r, const HmdSequenceOptions& o)
+      : r_(r),
+        context_(createRenderContext(r.backend)),
+        renderer_(r.scene, r.width, r.height,
+                  context_->hasExtension("GL_ARB_shader_viewport_layer_array"), settingsOf(r)),
+        denoiser_(makeDenoiser(r)),
+        compositor_(r.width, r.height, o.panelWidth, o.panelHeight, o.rotation),
+        maps_(lensSampleMaps(r.sampling, r.width, r.height, r.spp)),
+        log_(r.outDir) {}
+
+  // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
+  void frame(int k, const FrameTimes& t, const Pose& trackedA, const Pose& trackedB) {
+    const auto from = headEyes(composePose(r_.view.head, trackedA), r_.width, r_.height,
+                               haltonJitter(uint32_t(k)));
+    const auto to =
+        headEyes(composePose(r_.view.head, trackedB), r_.width, r_.height, glm::vec2(0));
+    const auto tr = Clock::now();
+    const auto eyes = render(from, k);
+    const double renderMs = msSince(tr);
+    const auto tc = Clock::now();
+    composite(eyes, from, to);
+    const double compositorMs = msSince(tc);
+    renderTotal_ += renderMs, compositorTotal_ += compositorMs;
+    writeImages(k, eyes);
+    const float turn = glm::degrees(
+        glm::angle(glm::normalize(glm::inverse(trackedA.orientation) * trackedB.orientation)));
+    log_.row() << k << ',' << t.render << ',' << t.display << ',' << turn << ','
+               << glm::length(trackedB.position - trackedA.position) << ','
+               << compositor_.reprojector().stats(0).disoccludedFraction() << ','
+               << compositor_.reprojector().stats(1).disoccludedFraction() << ',' << renderMs << ','
+               << compositorMs << '\n';
+  }
+
+  void finish(const HmdSequenceOptions& o) {
+    log_.close();
+    const double n = r_.frames;
+    std::printf(
+        "%d frames %dx%d per eye -> panel %dx%d (rotation %d): render %.1f ms/frame (denoise "
+        "%s), compositor (re-projection + distortion + output) %.1f ms/frame\nwrote "
+        "%s/NNNN_{left,right,panel}.png and %s/hmd_frames.csv\n",
+        r_.frames, r_.width, r_.height, o.panelWidth, o.panelHeight, o.rotation, renderTotal_ / n,
+        r_.denoise.c_str(), compositorTotal_ / n, r_.outDir.c_str(), r_.outDir.c_str());
+  }
+
+ private:
+  std::array<EyeImage, 2> render(const std::array<EyeCamera, 2>& from, int k) {
+    const std::array<const std::vector<uint16_t>*, 2> maps = {
+        maps_[0].empty() ? nullptr : &maps_[0], maps_[1].empty() ? nullptr : &maps_[1]};
+    HybridFrameTimes ft;
+    auto eyes = renderer_.render(from, 2, uint32_t(k), &ft, maps);
+    if (denoiser_) {
+      const DenoiseInput left = makeDenoiseInput(eyes[0]), right = makeDenoiseInput(eyes[1]);
+      denoiser_->run(renderer_.gbuffer(), {left.eye, right.eye}, 2,
+                     gl::parseDenoiseMode(r_.denoise), k == 0);
+    }
+    gl::waitForGpu();
+    return eyes;
+  }
+
+  void composite(const std::array<EyeImage, 2>& eyes, const std::array<EyeCamera, 2>& from,
+                 const std::array<EyeCamera, 2>& to) {
+    if (denoiser_) {
+      compositor_.run(denoiser_->linearTexture(), denoiser_->depthTexture(), from, to, r_.exposure);
+    } else {
+      for (int e = 0; e < 2; ++e) compositor_.upload(e, withAlpha(eyes[e].color), eyes[e].depth);
+      compositor_.runUploaded(from, to, r_.exposure);
+    }
+    gl::waitForGpu();
+  }
+
+  void writeImages(int k, const std::array<EyeImage, 2>& eyes) const {
+    for (int e = 0; e < 2; ++e) {
+      const char* eye = e == 0 ? "left" : "right";
+      if (denoiser_)
+        writeImage(frameName(r_, k, eye),
+                   flipToImage(denoiser_->readDisplay(e), r_.width, r_.height));
+      else
+        writeImage(frameName(r_, k, eye), sideBySide({&eyes[e]}, r_.exposure));
+    }
+    const gl::PanelOutput& out = compositor_.output();
+    writeImage(frameName(r_, k, "panel"), flipToImage(out.read(), out.width(), out.height()));
+  }
+
+  const RenderRequest& r_;
+  std::unique_ptr<gl::Context> context_;
+  HybridRenderer renderer_;
+  std::unique_ptr<gl::Denoiser> denoiser_;
+  HeadsetCompositor compositor_;
+  std::array<std::vector<uint16_t>, 2> maps_;
+  FrameLog log_;
+  double renderTotal_ = 0.0, compositorTotal_ = 0.0;
+};
+
+}  // namespace
+
+int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, const HmdSequenceOptions& o) {
+  if (r.mode != "hybrid") throw UsageError("--hmd: needs --mode hybrid");
+  if (!r.view.stereo) throw UsageError("--hmd: needs --eyes stereo");
+  std::string why;
+  const auto source = openHeadPoseSource(spec, false, &why);
+  if (!source) throw InputError("--hmd dk2", why);
+  const double latency = o.latencyMs >= 0.0 ? o.latencyMs * 1e-3 : 1.0 / o.fps;
+  HmdSequence sequence(r, o);
+  std::printf("hmd: %s; timing: frame k rendered at t = k / %.3g s, shown at t + %.1f ms\n",
+              source->status().c_str(), o.fps, latency * 1e3);
+  for (int k = 0; k < r.frames; ++k) {
+    const double t0 = spec.kind == "dk2" ? hmd::hostSeconds() : k / o.fps;
+    const FrameTimes t{t0, t0 + latency};
+    sequence.frame(k, t, source->pose(t.render), source->pose(t.display));
+  }
+  sequence.finish(o);
+  return 0;
+}
+
+}  // namespace photovr::app

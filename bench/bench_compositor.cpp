@@ -1,0 +1,329 @@
+// The headset compositor against the renderer (issue 6, "bench/"):
+//  1. time of re-projection + distortion + panel output vs the stereo G-buffer pass, both
+//     eyes at the same eye size in the same run (target: compositor <= 1/4 of G-buffer);
+//  2. the fraction of eye-buffer pixels the hidden-area mask skips (hmd/lens_maps.h);
+//  3. lens-matched vs uniform sampling at equal perceived error: relMSE against a
+//     converged reference, weighted per pixel by the lens density (display pixels per
+//     eye-buffer pixel, hmd lensDensity), and the speed-up at equal weighted error
+//     assuming error ~ 1 / tracer time (Monte Carlo; as `photovr ab` does).
+// Prints tables and writes bench_compositor.csv, bench_compositor_mask.csv and
+// bench_compositor_lens.csv to --out (default out/bench).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/headset.h"
+#include "core/builtin_scenes.h"
+#include "gl/context.h"
+#include "gl/gbuffer.h"
+#include "gl/scene_gpu.h"
+#include "hmd/lens_maps.h"
+#include "hybrid/hybrid_renderer.h"
+
+namespace photovr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Config {
+  std::string out = "out/bench";
+  int eyeW = kDk2EyeWidth, eyeH = kDk2EyeHeight, panelW = 1920, panelH = 1080;
+  int repeats = 3;
+  int lensW = 160, lensH = 180;  // sampling study: small, it needs a converged reference
+  int uniformSpp = 4, referenceSpp = 64, referenceRounds = 4, trials = 3;
+  bool samplingStudy = true;  // --sampling 0: timing and mask only
+};
+
+std::array<EyeCamera, 2> sceneEyes(const Scene& s, int w, int h, glm::vec2 jitter) {
+  return app::headEyes(poseOf(s.cameras.at(0)), w, h, jitter);
+}
+
+// A small head turn (1.5 deg yaw, 1 cm): what a refresh re-projects over.
+std::array<EyeCamera, 2> movedEyes(const Scene& s, int w, int h) {
+  Pose p = poseOf(s.cameras.at(0));
+  p.orientation =
+      glm::normalize(p.orientation * glm::angleAxis(glm::radians(1.5f), glm::vec3(0, 1, 0)));
+  p.position += p.orientation * glm::vec3(0.01f, 0.0f, 0.0f);
+  return app::headEyes(p, w, h, glm::vec2(0.0f));
+}
+
+// Re-projection grid steps measured (gl/compositor.h ReprojectParams::gridStep).
+constexpr int kSteps[] = {1, 2, 4};
+
+struct Timing {
+  std::string scene;
+  double gbuffer = 0, reproject[3] = {}, distort = 0, output = 0;
+  double compositor(int s) const { return reproject[s] + distort + output; }
+};
+
+// Mean of 'repeats' runs after one warm-up (llvmpipe compiles shader variants on first use).
+template <typename F>
+double meanMs(int repeats, F&& pass) {
+  pass();
+  gl::waitForGpu();
+  double sum = 0.0;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    pass();
+    gl::waitForGpu();
+    sum += msSince(t0);
+  }
+  return sum / repeats;
+}
+
+Timing timeScene(const std::string& name, const Config& c, bool layered) {
+  const Scene scene = makeBuiltinScene(name);
+  const gl::SceneGpu gpu(scene);
+  gl::GBufferPass pass(c.eyeW, c.eyeH, layered, gl::EyeRouting::Layered);
+  app::HeadsetCompositor comp(c.eyeW, c.eyeH, c.panelW, c.panelH, 90);
+  const auto from = sceneEyes(scene, c.eyeW, c.eyeH, glm::vec2(0.0f));
+  const auto to = movedEyes(scene, c.eyeW, c.eyeH);
+  std::array<glm::mat4, 2> vp;
+  for (int e = 0; e < 2; ++e) vp[e] = from[e].unjitteredProjection() * from[e].view();
+  Timing t;
+  t.scene = name;
+  t.gbuffer = meanMs(c.repeats, [&] { pass.render(gpu, from, vp); });
+  // The G-buffer's own layers stand in for a rendered frame: base colour as colour and
+  // its D32F depth (the passes' cost does not depend on the values).
+  const unsigned color = pass.texture(gl::GBufferTarget::BaseColor), depth = pass.depthTexture();
+  for (int k = 0; k < 3; ++k) {
+    gl::ReprojectParams params;
+    params.gridStep = kSteps[k];
+    comp.reprojector().setParams(params);
+    t.reproject[k] = meanMs(c.repeats, [&] { comp.reprojector().run(color, depth, from, to); });
+  }
+  t.distort = meanMs(c.repeats, [&] { comp.distorter().run(comp.reprojector().colorTexture()); });
+  t.output = meanMs(c.repeats, [&] { comp.output().run(comp.distorter().panelTexture(), 1.0f); });
+  return t;
+}
+
+struct MaskRow {
+  int eye;
+  double hidden;
+};
+
+std::vector<MaskRow> hiddenFractions(const Config& c) {
+  std::vector<MaskRow> rows;
+  const hmd::LensModel lens;
+  for (int e = 0; e < 2; ++e) {
+    hmd::EyeBufferSpec spec;
+    spec.eye = Eye(e);
+    spec.fov = e == 0 ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
+    spec.width = c.eyeW, spec.height = c.eyeH;
+    const auto mask = hmd::hiddenAreaMask(lens, spec);
+    rows.push_back({e, double(std::count(mask.begin(), mask.end(), 1)) / double(mask.size())});
+  }
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------
+// Sampling study
+
+struct LensRow {
+  std::string method;
+  double meanSpp = 0, tracedFraction = 0, cpuMs = 0, error = 0;
+  double cost() const { return cpuMs * error; }  // time x error: constant under MC
+  // samples x error: the same without the clock (time is noisy on a loaded machine)
+  double sampleCost() const { return meanSpp * error; }
+};
+
+std::array<std::vector<float>, 2> densityWeights(int w, int h) {
+  std::array<std::vector<float>, 2> out;
+  const hmd::LensModel lens;
+  for (int e = 0; e < 2; ++e) {
+    hmd::EyeBufferSpec spec;
+    spec.eye = Eye(e);
+    spec.fov = e == 0 ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
+    spec.width = w, spec.height = h;
+    out[e] = hmd::lensDensity(lens, spec);
+  }
+  return out;
+}
+
+// relMSE (eps 1e-2, as `photovr ab`) per pixel, weighted by the lens density.
+double weightedError(const std::array<EyeImage, 2>& img,
+                     const std::array<std::vector<glm::vec3>, 2>& ref,
+                     const std::array<std::vector<float>, 2>& weight) {
+  double sum = 0.0, wsum = 0.0;
+  for (int e = 0; e < 2; ++e)
+    for (size_t i = 0; i < ref[e].size(); ++i) {
+      const glm::vec3 d = img[e].color[i] - ref[e][i];
+      const glm::vec3 r = ref[e][i];
+      const double rel = (d.x * d.x / (r.x * r.x + 1e-2) + d.y * d.y / (r.y * r.y + 1e-2) +
+                          d.z * d.z / (r.z * r.z + 1e-2)) /
+                         3.0;
+      sum += weight[e][i] * rel;
+      wsum += weight[e][i];
+    }
+  return sum / wsum;
+}
+
+std::array<std::vector<uint16_t>, 2> sppMaps(const std::string& method, const Config& c) {
+  const hmd::LensModel lens;
+  std::array<std::vector<uint16_t>, 2> maps;
+  if (method == "uniform") return maps;
+  for (int e = 0; e < 2; ++e) {
+    hmd::EyeBufferSpec spec;
+    spec.eye = Eye(e);
+    spec.fov = e == 0 ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
+    spec.width = c.lensW, spec.height = c.lensH;
+    if (method == "hidden-area") {
+      const auto mask = hmd::hiddenAreaMask(lens, spec);
+      maps[e].resize(mask.size());
+      for (size_t i = 0; i < mask.size(); ++i) maps[e][i] = mask[i] ? 0 : uint16_t(c.uniformSpp);
+    } else {  // lens-matched, its maximum twice the uniform count
+      maps[e] = hmd::lensMatchedSpp(lens, spec, 2 * c.uniformSpp);
+    }
+  }
+  return maps;
+}
+
+std::vector<LensRow> lensStudy(const Config& c, bool layered) {
+  const Scene scene = makeBuiltinScene("cornell");
+  TraceSettings settings;
+  settings.samplesPerPixel = c.referenceSpp;
+  HybridRenderer renderer(scene, c.lensW, c.lensH, layered, settings);
+  const auto eyes = sceneEyes(scene, c.lensW, c.lensH, haltonJitter(0));
+  // Reference: every round the same jittered pixel positions (frame 0), new seeds.
+  std::array<std::vector<glm::vec3>, 2> ref;
+  for (int round = 0; round < c.referenceRounds; ++round) {
+    renderer.setSeed(1000u + uint32_t(round));
+    const auto img = renderer.render(eyes, 2, 0, nullptr);
+    for (int e = 0; e < 2; ++e) {
+      ref[e].resize(img[e].color.size());
+      for (size_t i = 0; i < ref[e].size(); ++i)
+        ref[e][i] += img[e].color[i] / float(c.referenceRounds);
+    }
+  }
+  const auto weights = densityWeights(c.lensW, c.lensH);
+  std::vector<LensRow> rows;
+  for (const std::string method : {"uniform", "hidden-area", "lens-matched"}) {
+    TraceSettings ts;
+    ts.samplesPerPixel = c.uniformSpp;
+    HybridRenderer r(scene, c.lensW, c.lensH, layered, ts);
+    const auto maps = sppMaps(method, c);
+    const std::array<const std::vector<uint16_t>*, 2> ptrs = {maps[0].empty() ? nullptr : &maps[0],
+                                                              maps[1].empty() ? nullptr : &maps[1]};
+    LensRow row;
+    row.method = method;
+    for (int t = 0; t < c.trials; ++t) {
+      r.setSeed(uint32_t(t + 1));
+      HybridFrameTimes times;
+      const auto img = r.render(eyes, 2, 0, &times, ptrs);
+      row.cpuMs += times.cpuMs() / c.trials;
+      row.error += weightedError(img, ref, weights) / c.trials;
+      double spp = 0, traced = 0;
+      for (int e = 0; e < 2; ++e)
+        for (uint32_t n : img[e].samples) spp += n, traced += n > 0;
+      row.meanSpp = spp / (2.0 * c.lensW * c.lensH);
+      row.tracedFraction = traced / (2.0 * c.lensW * c.lensH);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+Config parse(int argc, char** argv) {
+  Config c;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    const int v = std::atoi(argv[i + 1]);
+    if (a == "--out")
+      c.out = argv[i + 1];
+    else if (a == "--width")
+      c.eyeW = v;
+    else if (a == "--height")
+      c.eyeH = v;
+    else if (a == "--repeats")
+      c.repeats = std::max(1, v);
+    else if (a == "--trials")
+      c.trials = std::max(1, v);
+    else if (a == "--sampling")
+      c.samplingStudy = v != 0;
+    else {
+      std::fprintf(stderr, "photovr_bench_compositor: unknown option %s\n", a.c_str());
+      std::exit(2);
+    }
+  }
+  if (c.eyeW < 8 || c.eyeH < 8 || c.eyeW > 4096 || c.eyeH > 4096) {
+    std::fprintf(stderr, "photovr_bench_compositor: --width/--height out of range 8..4096\n");
+    std::exit(2);
+  }
+  return c;
+}
+
+int run(int argc, char** argv) {
+  const Config c = parse(argc, argv);
+  std::unique_ptr<gl::Context> ctx;
+  try {
+    ctx = gl::Context::create({gl::Backend::EGL});
+  } catch (const gl::ContextError&) {
+    ctx = gl::Context::create({gl::Backend::OSMesa});
+  }
+  const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
+  std::filesystem::create_directories(c.out);
+  std::printf("bench_compositor: eyes %dx%d x 2, panel %dx%d (rotation 90), mean of %d; GL: %s\n",
+              c.eyeW, c.eyeH, c.panelW, c.panelH, c.repeats, ctx->renderer().c_str());
+  std::printf("%-8s %9s | %-26s | %8s %8s | %-21s | %-21s\n", "", "", "reproject, grid step", "",
+              "", "compositor, step 1", "compositor, step 4");
+  std::printf("%-8s %9s | %8s %8s %8s | %8s %8s | %11s %9s | %11s %9s\n", "scene", "gbuffer", "1",
+              "2", "4", "distort", "output", "ms", "/gbuffer", "ms", "/gbuffer");
+  std::ofstream csv(c.out + "/bench_compositor.csv");
+  csv << "scene,eye_width,eye_height,panel_width,panel_height,gbuffer_ms,reproject_step1_ms,"
+         "reproject_step2_ms,reproject_step4_ms,distort_ms,output_ms,compositor_step1_ms,"
+         "compositor_step4_ms,step1_over_gbuffer,step4_over_gbuffer\n";
+  for (const std::string& name : builtinSceneNames()) {
+    const Timing t = timeScene(name, c, layered);
+    const double r1 = t.compositor(0) / t.gbuffer, r4 = t.compositor(2) / t.gbuffer;
+    std::printf("%-8s %9.1f | %8.1f %8.1f %8.1f | %8.1f %8.1f | %11.1f %9.3f | %11.1f %9.3f\n",
+                name.c_str(), t.gbuffer, t.reproject[0], t.reproject[1], t.reproject[2], t.distort,
+                t.output, t.compositor(0), r1, t.compositor(2), r4);
+    csv << name << ',' << c.eyeW << ',' << c.eyeH << ',' << c.panelW << ',' << c.panelH << ','
+        << t.gbuffer << ',' << t.reproject[0] << ',' << t.reproject[1] << ',' << t.reproject[2]
+        << ',' << t.distort << ',' << t.output << ',' << t.compositor(0) << ',' << t.compositor(2)
+        << ',' << r1 << ',' << r4 << '\n';
+  }
+  std::printf("(ms, mean of %d; target: compositor <= 0.25 x gbuffer)\n", c.repeats);
+  std::ofstream mask(c.out + "/bench_compositor_mask.csv");
+  mask << "eye,width,height,hidden_fraction\n";
+  for (const MaskRow& m : hiddenFractions(c)) {
+    std::printf("hidden-area mask, %s eye %dx%d: %.1f %% of the pixels skipped\n",
+                m.eye ? "right" : "left", c.eyeW, c.eyeH, 100.0 * m.hidden);
+    mask << (m.eye ? "right" : "left") << ',' << c.eyeW << ',' << c.eyeH << ',' << m.hidden << '\n';
+  }
+  if (!c.samplingStudy) return 0;
+  const std::vector<LensRow> rows = lensStudy(c, layered);
+  std::printf("sampling (cornell, %dx%d x 2 eyes, reference %d spp, mean of %d trials):\n", c.lensW,
+              c.lensH, c.referenceSpp * c.referenceRounds, c.trials);
+  std::printf("%-13s %9s %8s %10s %14s %14s %14s\n", "method", "mean spp", "traced", "tracer",
+              "lens-wt relMSE", "speed-up/time", "/samples");
+  std::ofstream lens(c.out + "/bench_compositor_lens.csv");
+  lens << "method,mean_spp,traced_fraction,tracer_ms,lens_weighted_relmse,"
+          "speedup_at_equal_error_by_time,speedup_at_equal_error_by_samples\n";
+  for (const LensRow& r : rows) {
+    const double byTime = rows[0].cost() / r.cost();
+    const double bySamples = rows[0].sampleCost() / r.sampleCost();
+    std::printf("%-13s %9.2f %7.1f%% %7.1f ms %14.5f %13.2fx %13.2fx\n", r.method.c_str(),
+                r.meanSpp, 100.0 * r.tracedFraction, r.cpuMs, r.error, byTime, bySamples);
+    lens << r.method << ',' << r.meanSpp << ',' << r.tracedFraction << ',' << r.cpuMs << ','
+         << r.error << ',' << byTime << ',' << bySamples << '\n';
+  }
+  std::printf(
+      "wrote %s/bench_compositor.csv, bench_compositor_mask.csv, bench_compositor_lens.csv\n",
+      c.out.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace photovr
+
+int main(int argc, char** argv) {
+  return photovr::run(argc, argv);
+}
