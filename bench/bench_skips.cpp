@@ -1,0 +1,223 @@
+// What each skip of unneeded work saves (issue 7, item 3): for every built-in scene, the
+// hybrid's frame time with all skips on, then with one skip turned off (trace/work_skips.h),
+// plus the hidden-area mask (pixels the DK2 lens never shows) and converged accumulation
+// (static view: stop when the estimated relMSE falls below a threshold). A skip that does
+// not apply to a scene (it has that light class, say) is listed as such.
+//
+// Times are process CPU time (getrusage: every thread, GL's llvmpipe threads included), which
+// other programs on a shared machine disturb far less than wall time; skip-on and skip-off
+// runs alternate and each keeps its best of --repeats, so a busy spell hits both alike.
+// A light-class skip changes the noise too (a placeholder takes a share of light samples),
+// so each row also has the estimated relMSE of its frames' mean and the time saved at equal
+// error: time to a given error is proportional to time x relMSE (relMSE falls as 1/n).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/sample_maps.h"
+#include "core/builtin_scenes.h"
+#include "gl/context.h"
+#include "hybrid/hybrid_renderer.h"
+#include "trace/convergence.h"
+
+namespace photovr {
+namespace {
+
+using SppMaps = std::array<const std::vector<uint16_t>*, 2>;
+
+struct Options {
+  std::string out = "out/bench";
+  int width = 240, height = 270;  // a quarter of a DK2 eye per side, both eyes
+  int frames = 6, repeats = 3;    // frames >= ConvergenceMonitor::kMinFrames (error estimate)
+  // Converged accumulation: stop at this estimated relMSE. At 1 spp per frame the built-in
+  // scenes reach 5e-2 in roughly 20 to 60 frames at this size.
+  double converge = 5e-2;
+  int convergeFrames = 64;
+};
+
+struct Timing {
+  double msPerFrame = 1e30;
+  uint64_t raysPerFrame = 0;
+  double relMse = 0.0;  // estimated relMSE of the frames' mean (ConvergenceMonitor)
+  double cost() const { return msPerFrame * relMse; }  // proportional to time at equal error
+};
+
+double cpuMs() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const auto ms = [](const timeval& t) {
+    return double(t.tv_sec) * 1e3 + double(t.tv_usec) * 1e-3;
+  };
+  return ms(u.ru_utime) + ms(u.ru_stime);
+}
+
+std::array<EyeCamera, 2> eyesOf(const Scene& scene, int w, int h, uint32_t frame) {
+  StereoRig rig;
+  rig.head = poseOf(scene.cameras.at(0));
+  return {rig.eye(Eye::Left, w, h, haltonJitter(frame)),
+          rig.eye(Eye::Right, w, h, haltonJitter(frame))};
+}
+
+// One run of o.frames stereo frames: lowers t to its CPU time per frame if it was faster.
+void timeOnce(HybridRenderer& renderer, const Scene& scene, const Options& o, const SppMaps& maps,
+              Timing& t) {
+  uint64_t rays = 0;
+  ConvergenceMonitor monitor;  // every repeat renders the same frames: one estimate suffices
+  double ms = 0.0;
+  for (int f = 0; f < o.frames; ++f) {
+    const double t0 = cpuMs();
+    const auto images = renderer.render(eyesOf(scene, o.width, o.height, uint32_t(f)), 2,
+                                        uint32_t(f), nullptr, maps);
+    ms += cpuMs() - t0;
+    rays += images[0].rays + images[1].rays;
+    for (int e = 0; e < 2; ++e) monitor.add(e, images[e].color, o.width);
+  }
+  t.msPerFrame = std::min(t.msPerFrame, ms / o.frames);
+  t.raysPerFrame = rays / uint64_t(o.frames);
+  t.relMse = monitor.estimatedRelMse();
+}
+
+// Two configurations alternately, best of o.repeats each.
+std::pair<Timing, Timing> timePair(HybridRenderer& a, const SppMaps& mapsA, HybridRenderer& b,
+                                   const SppMaps& mapsB, const Scene& scene, const Options& o) {
+  Timing ta, tb;
+  for (int r = 0; r < o.repeats; ++r) {
+    timeOnce(a, scene, o, mapsA, ta);
+    timeOnce(b, scene, o, mapsB, tb);
+  }
+  return {ta, tb};
+}
+
+// Whether turning 'skip' off changes any work for this scene.
+bool applies(const Scene& scene, const std::string& skip) {
+  WorkSkips off;
+  off.disable(skip);
+  if (skip == "punctual-lights" || skip == "area-lights" || skip == "environment")
+    return LightSet(scene, off).placeholderCount() > 0;
+  if (skip == "any-hit")
+    return std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& mesh) {
+      const Material& m = scene.materials[mesh.material];
+      return m.doubleSided && m.alphaMode != AlphaMode::Mask;
+    });
+  if (skip == "sky-pixels") return scene.environment.type != Environment::Type::None;
+  return true;  // refit: every built-in scene is static
+}
+
+struct Printer {
+  std::ofstream csv;
+  void row(const std::string& scene, const std::string& skip, const std::string& note,
+           const Timing& on, const Timing& off) {
+    const double saved = 1.0 - on.msPerFrame / off.msPerFrame;
+    const double savedEqualError = off.cost() > 0.0 ? 1.0 - on.cost() / off.cost() : saved;
+    std::printf("%-9s %-16s %8.1f %8.1f %7.1f%% %9.2e %9.2e %7.1f%% %10llu %10llu  %s\n",
+                scene.c_str(), skip.c_str(), on.msPerFrame, off.msPerFrame, 100.0 * saved,
+                on.relMse, off.relMse, 100.0 * savedEqualError, (unsigned long long)on.raysPerFrame,
+                (unsigned long long)off.raysPerFrame, note.c_str());
+    std::fflush(stdout);
+    csv << scene << ',' << skip << ',' << on.msPerFrame << ',' << off.msPerFrame << ',' << saved
+        << ',' << on.relMse << ',' << off.relMse << ',' << savedEqualError << ',' << on.raysPerFrame
+        << ',' << off.raysPerFrame << ",\"" << note << "\"\n";
+  }
+};
+
+// Converged accumulation: frames to reach the threshold vs rendering all of them.
+void convergedRow(HybridRenderer& renderer, const Scene& scene, const std::string& name,
+                  const Options& o, Printer& p) {
+  ConvergenceMonitor monitor;
+  int stoppedAt = o.convergeFrames;
+  const double t0 = cpuMs();
+  for (int f = 0; f < o.convergeFrames; ++f) {
+    const auto images =
+        renderer.render(eyesOf(scene, o.width, o.height, uint32_t(f)), 2, uint32_t(f), nullptr);
+    for (int e = 0; e < 2; ++e) monitor.add(e, images[e].color, o.width);
+    if (stoppedAt == o.convergeFrames && monitor.converged(o.converge)) stoppedAt = f + 1;
+  }
+  const double msPerFrame = (cpuMs() - t0) / o.convergeFrames;
+  // Per presented frame over the run: tracing stops at 'stoppedAt', presenting goes on (no
+  // error columns: the point is to stop once the error is low enough).
+  const Timing off{msPerFrame, 0, 0.0}, on{msPerFrame * stoppedAt / o.convergeFrames, 0, 0.0};
+  char note[128];
+  std::snprintf(note, sizeof note, "stopped after %d of %d frames at estimated relMSE < %.0e",
+                stoppedAt, o.convergeFrames, o.converge);
+  p.row(name, "converged", note, on, off);
+}
+
+// The built-in scenes, and cornell made double-sided everywhere: the only one whose meshes
+// need no any-hit filter (every built-in has single-sided or MASK materials).
+std::vector<std::string> sceneNames() {
+  std::vector<std::string> names = builtinSceneNames();
+  names.push_back("cornell2s");
+  return names;
+}
+
+Scene sceneNamed(const std::string& name) {
+  if (name != "cornell2s") return makeBuiltinScene(name);
+  Scene s = makeBuiltinScene("cornell");
+  for (Material& m : s.materials) m.doubleSided = true;
+  return s;
+}
+
+void benchScene(const std::string& name, bool layers, const Options& o, Printer& p) {
+  const Scene scene = sceneNamed(name);
+  HybridRenderer base(scene, o.width, o.height, layers, TraceSettings{});
+  for (const std::string& skip : WorkSkips::names()) {
+    if (!applies(scene, skip)) {
+      std::printf("%-9s %-16s (does not apply: the scene needs this work)\n", name.c_str(),
+                  skip.c_str());
+      continue;
+    }
+    TraceSettings settings;
+    settings.skips.disable(skip);
+    HybridRenderer renderer(scene, o.width, o.height, layers, settings);
+    const auto [on, off] = timePair(base, {}, renderer, {}, scene, o);
+    p.row(name, skip, "", on, off);
+  }
+  const auto maps = app::lensSampleMaps("hidden-area", o.width, o.height, 1);
+  const auto [hidden, uniform] = timePair(base, {&maps[0], &maps[1]}, base, {}, scene, o);
+  p.row(name, "hidden-area", app::describeSampleMaps(maps), hidden, uniform);
+  convergedRow(base, scene, name, o, p);
+}
+
+int run(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--out") o.out = argv[i + 1];
+    if (a == "--width") o.width = std::stoi(argv[i + 1]);
+    if (a == "--height") o.height = std::stoi(argv[i + 1]);
+    if (a == "--frames")
+      o.frames = std::max(ConvergenceMonitor::kMinFrames, std::stoi(argv[i + 1]));
+    if (a == "--repeats") o.repeats = std::stoi(argv[i + 1]);
+  }
+  std::unique_ptr<gl::Context> ctx;
+  try {
+    ctx = gl::Context::create({gl::Backend::EGL});
+  } catch (const gl::ContextError&) {
+    ctx = gl::Context::create({gl::Backend::OSMesa});
+  }
+  const bool layers = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
+  std::printf(
+      "bench_skips: hybrid, %dx%d x 2 eyes, 1 spp, %d frames, CPU ms per frame, best of "
+      "%d; GL: %s\n",
+      o.width, o.height, o.frames, o.repeats, ctx->renderer().c_str());
+  std::printf("%-9s %-16s %8s %8s %8s %9s %9s %8s %10s %10s\n", "scene", "skip", "on ms", "off ms",
+              "saved", "relMSE on", "off", "eq.error", "rays on", "rays off");
+  std::filesystem::create_directories(o.out);
+  Printer p{std::ofstream(o.out + "/bench_skips.csv")};
+  p.csv << "scene,skip,on_cpu_ms_per_frame,off_cpu_ms_per_frame,time_saved,on_relmse,off_relmse,"
+           "time_saved_at_equal_error,on_rays_per_frame,off_rays_per_frame,note\n";
+  for (const std::string& name : sceneNames()) benchScene(name, layers, o, p);
+  std::printf("wrote %s/bench_skips.csv\n", o.out.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace photovr
+
+int main(int argc, char** argv) {
+  return photovr::run(argc, argv);
+}
