@@ -24,6 +24,7 @@
 #include "core/image_io.h"
 #include "core/scene_transform.h"
 #include "gl/denoiser.h"
+#include "gl/headset_monitor.h"
 #include "gl/window_input.h"
 #include "hmd/dk2_driver.h"
 #include "hybrid/denoise_input.h"
@@ -81,7 +82,7 @@ struct ViewConfig {
   glm::ivec2 window{960, 540}, panel{0, 0};
   FrameSettings settings;
   int denoise = 2;  // index into kDenoiseModes
-  bool reproject = true, overlay = true;
+  bool reproject = true, overlay = true, rotationGiven = false;
   float exposure = 1.0f;
   std::string outDir = ".", screenshot;
 };
@@ -106,6 +107,7 @@ ViewConfig parseViewConfig(Args args) {
   c.panel = parseSize(o, "--panel", {0, 0});
   if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");
   c.rotation = gl::checkPanelRotation(o.integer("--rotate", 0, 0, 270));
+  c.rotationGiven = o.has("--rotate");
   c.settings.pathTraced = o.choice("--mode", "hybrid", {"hybrid", "pt"}) == "pt";
   c.settings.spp = o.integer("--spp", 1, 1, 64);
   c.settings.bounces = o.integer("--bounces", 4, 0, 16);
@@ -223,10 +225,11 @@ struct Session {
     o.windowWidth = c.window.x, o.windowHeight = c.window.y;
     o.visible = true;
     o.title = "photovr view";
+    const bool dk2 = c.hmd.kind == "dk2" && !head.desktop;
+    if (dk2) placeOnHeadset(o);
     context = gl::Context::create(o);
     if (c.panel.x == 0)
-      c.panel = c.hmd.kind == "dk2" && !head.desktop ? glm::ivec2(1920, 1080)
-                                                     : glm::ivec2(c.window.x & ~1, c.window.y);
+      c.panel = dk2 ? glm::ivec2(1920, 1080) : glm::ivec2(c.window.x & ~1, c.window.y);
     renderer = std::make_unique<ViewRenderer>(
         c.scene, c.width, c.height, context->hasExtension("GL_ARB_shader_viewport_layer_array"));
     gl::DenoiseParams params;
@@ -234,6 +237,18 @@ struct Session {
     compositor =
         std::make_unique<HeadsetCompositor>(c.width, c.height, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
+  }
+
+  // The DK2's own monitor, fullscreen and turned for its panel; else a mirror window.
+  void placeOnHeadset(gl::ContextOptions& o) {
+    const gl::HeadsetMonitor m = gl::pickHeadsetMonitor(gl::listMonitors());
+    if (m.index < 0) {
+      std::printf("view: DK2 display not found (%s); showing a mirror window\n", m.reason.c_str());
+      return;
+    }
+    std::printf("view: DK2 display is %s; fullscreen there\n", m.reason.c_str());
+    o.fullscreenMonitor = m.index;
+    if (!c.rotationGiven) c.rotation = m.rotation;
   }
 
   Pose headPose(double t) { return composePose(c.view.head, head.source->pose(t)); }

@@ -25,6 +25,9 @@ struct ContextOptions {
   int windowWidth = 1280;  // glfw only
   int windowHeight = 720;  // glfw only
   bool visible = false;    // glfw only
+  // glfw only: fullscreen on this monitor (an index into listMonitors(), e.g. the DK2's
+  // from pickHeadsetMonitor) at its current mode; -1: a window of the size above.
+  int fullscreenMonitor = -1;
   std::string title = "photovr";
 };
 

@@ -35,7 +35,21 @@ class GLFWContextImpl final : public Context {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, o.visible ? GLFW_TRUE : GLFW_FALSE);
-    window_ = glfwCreateWindow(o.windowWidth, o.windowHeight, o.title.c_str(), nullptr, nullptr);
+    GLFWmonitor* monitor = nullptr;
+    int width = o.windowWidth, height = o.windowHeight;
+    if (o.fullscreenMonitor >= 0) {
+      int count = 0;
+      GLFWmonitor** monitors = glfwGetMonitors(&count);
+      if (o.fullscreenMonitor >= count) {
+        glfwTerminate();
+        throw ContextError("glfw: no monitor " + std::to_string(o.fullscreenMonitor));
+      }
+      monitor = monitors[o.fullscreenMonitor];
+      const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+      width = mode->width, height = mode->height;
+      glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+    }
+    window_ = glfwCreateWindow(width, height, o.title.c_str(), monitor, nullptr);
     if (!window_) {
       const std::string why = glfwErrorText();
       glfwTerminate();
