@@ -1,8 +1,5 @@
 #include "app/bench_limits.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <chrono>
 
@@ -29,17 +26,10 @@ double bestMs(int repeats, F&& f) {
   return best;
 }
 
-// Consecutive rays (one pixel's paths) stay on one thread, as in the tracer's tiles. The
-// hit count is returned so that the traversal cannot be optimised away.
+// The hit count is returned so that the traversal cannot be optimised away.
 uint64_t replayParallel(const EmbreeScene& embree, const std::vector<RecordedRay>& rays) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, rays.size(), 4096), uint64_t(0),
-      [&](const tbb::blocked_range<size_t>& r, uint64_t found) {
-        enableFlushToZero();
-        const ReplayCounts n = embree.replay(rays.data() + r.begin(), r.size());
-        return found + n.hits + n.blocked;
-      },
-      [](uint64_t a, uint64_t b) { return a + b; });
+  const ReplayCounts n = embree.replayParallel(rays);
+  return n.hits + n.blocked;
 }
 
 // Times 'frame' (which returns its tracer milliseconds and rays) against the replay of the

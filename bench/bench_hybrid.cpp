@@ -5,8 +5,6 @@
 // read-back, G-buffer N+1 queued before tracing N), pt stages (primary hits, the rest),
 // rays per second of each, and the ratio to raw Embree on the same rays (recorded on one
 // untimed frame and replayed through rtcIntersect1 / rtcOccluded1). Best of --repeats.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -47,11 +45,7 @@ std::array<EyeCamera, 2> eyesOf(const Scene& s, int w, int h, uint32_t f) {
 // Replays in parallel over chunks on all threads, as the tracer traced them.
 double replayMs(const EmbreeScene& embree, const std::vector<RecordedRay>& rays) {
   const auto t0 = Clock::now();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      enableFlushToZero();
-                      embree.replay(rays.data() + r.begin(), r.size());
-                    });
+  embree.replayParallel(rays);
   return msSince(t0);
 }
 

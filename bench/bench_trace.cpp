@@ -11,7 +11,6 @@
 // `perf stat -e task-clock taskset -c 0 ... --render-only --scene S` (CPU time) instead.
 #include <tbb/global_control.h>
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -77,24 +76,6 @@ uint64_t hashColors(const std::vector<glm::vec3>& c) {
   return h;
 }
 
-// Replays in parallel chunks as the tracer's tiles run: consecutive rays (one pixel's paths,
-// then the next pixel's) stay on one thread, so coherence matches the render's.
-ReplayCounts replayAll(const EmbreeScene& embree, const std::vector<RecordedRay>& rays) {
-  constexpr size_t kChunk = 4096;  // ~ the rays of one 16 x 16 tile at 4 spp in cornell
-  std::vector<ReplayCounts> parts((rays.size() + kChunk - 1) / kChunk);
-  tbb::parallel_for(size_t(0), parts.size(), [&](size_t k) {
-    enableFlushToZero();
-    const size_t begin = k * kChunk, end = std::min(rays.size(), begin + kChunk);
-    parts[k] = embree.replay(rays.data() + begin, end - begin);
-  });
-  ReplayCounts total;
-  for (const ReplayCounts& p : parts) {
-    total.intersectRays += p.intersectRays, total.hits += p.hits;
-    total.occludedRays += p.occludedRays, total.blocked += p.blocked;
-  }
-  return total;
-}
-
 std::vector<RecordedRay> ofKind(const std::vector<RecordedRay>& rays, RecordedRay::Kind kind) {
   std::vector<RecordedRay> out;
   std::copy_if(rays.begin(), rays.end(), std::back_inserter(out),
@@ -139,10 +120,10 @@ void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
   for (int k = 0; k < repeats; ++k) {
     timeBest(row.renderSeconds, render);
     if (r.all.empty()) continue;
-    timeBest(row.replaySeconds, [&] { replayAll(r.embree, r.all); });
-    timeBest(row.replayIntersectSeconds, [&] { replayAll(r.embree, r.intersect); });
-    timeBest(row.replayOccludedSeconds, [&] { replayAll(r.embree, r.occluded); });
-    timeBest(row.replayUnfilteredSeconds, [&] { replayAll(*r.unfiltered, r.all); });
+    timeBest(row.replaySeconds, [&] { r.embree.replayParallel(r.all); });
+    timeBest(row.replayIntersectSeconds, [&] { r.embree.replayParallel(r.intersect); });
+    timeBest(row.replayOccludedSeconds, [&] { r.embree.replayParallel(r.occluded); });
+    timeBest(row.replayUnfilteredSeconds, [&] { r.unfiltered->replayParallel(r.all); });
   }
 }
 

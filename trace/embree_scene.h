@@ -97,6 +97,9 @@ class EmbreeScene {
   // scene (same BVHs, same filters), with no recording and no TraceHit conversion: the
   // traversal cost alone. Thread-safe; the caller sets flush-to-zero as tracing threads do.
   ReplayCounts replay(const RecordedRay* rays, size_t count) const;
+  // The same on every thread: chunks of consecutive rays (one pixel's paths, then the next
+  // pixel's) stay on one thread, as in the tracer's tiles, so coherence matches the render.
+  ReplayCounts replayParallel(const std::vector<RecordedRay>& rays) const;
 
   const EmbreeStats& stats() const { return stats_; }
 
