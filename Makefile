@@ -24,6 +24,7 @@ build: setup
 bench: build
 	./$(BUILD)/bench/photovr_bench_trace --out out/bench
 	./$(BUILD)/bench/photovr_bench_hybrid --out out/bench
+	./$(BUILD)/bench/photovr_bench_denoise --out out/bench
 	./$(BUILD)/bench/photovr_bench_skips --out out/bench
 	./$(BUILD)/bench/photovr_bench_compositor --out out/bench
 

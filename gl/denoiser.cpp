@@ -11,7 +11,7 @@
 namespace photovr::gl {
 namespace {
 
-static_assert(sizeof(shared::DenoiseUniforms) == 5 * 16, "std140 DenoiseUniforms");
+static_assert(sizeof(shared::DenoiseUniforms) == 6 * 16, "std140 DenoiseUniforms");
 constexpr int kMaxIterations = 5;
 
 GLuint makeArray(GLenum internal, int w, int h) {
@@ -79,18 +79,23 @@ Denoiser::Denoiser(int w, int h, const DenoiseParams& params)
       height_(h),
       params_(params),
       temporal_({{GL_COMPUTE_SHADER, "svgf_temporal.comp"}}, {}),
+      firefly_({{GL_COMPUTE_SHADER, "svgf_firefly.comp"}}, {}),
       atrous_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {}),
-      atrousComposite_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {"SVGF_COMPOSITE 1"}),
-      composite_({{GL_COMPUTE_SHADER, "svgf_composite.comp"}}, {}) {
+      atrousComposite_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}},
+                       {"SVGF_COMPOSITE 1", "SVGF_RESOLVE_FOLLOWS 1"}),
+      composite_({{GL_COMPUTE_SHADER, "svgf_composite.comp"}}, {}),
+      resolve_({{GL_COMPUTE_SHADER, "svgf_resolve.comp"}}, {}) {
   for (GLuint& t : inputs_) t = makeCleared(GL_RGB32F, GL_RGB, GL_FLOAT, w, h);
   for (int i = 0; i < 2; ++i) {
     geometry_[i] = makeCleared(GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, w, h);
     aux_[i] = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
     moments_[i] = makeCleared(GL_RGBA32F, GL_RGBA, GL_FLOAT, w, h);
-    for (GLuint* t : {&history_[i][0], &history_[i][1], &filterA_[i], &filterB_[i]})
+    for (GLuint* t :
+         {&history_[i][0], &history_[i][1], &filterA_[i], &filterB_[i], &resolveHistory_[i]})
       *t = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
   }
   linear_ = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
+  composited_ = makeCleared(GL_RGBA16F, GL_RGBA, GL_FLOAT, w, h);
   display_ = makeCleared(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
   depth_ = makeCleared(GL_R32F, GL_RED, GL_FLOAT, w, h);
   api::CreateBuffers(1, &uniforms_);
@@ -102,11 +107,11 @@ Denoiser::~Denoiser() {
   api::DeleteTextures(InCount, inputs_);
   for (int i = 0; i < 2; ++i) {
     const GLuint t[] = {geometry_[i],   aux_[i],     moments_[i], history_[i][0],
-                        history_[i][1], filterA_[i], filterB_[i]};
+                        history_[i][1], filterA_[i], filterB_[i], resolveHistory_[i]};
     api::DeleteTextures(GLsizei(std::size(t)), t);
   }
-  const GLuint out[] = {linear_, display_, depth_};
-  api::DeleteTextures(3, out);
+  const GLuint out[] = {linear_, display_, depth_, composited_};
+  api::DeleteTextures(GLsizei(std::size(out)), out);
   api::DeleteBuffers(1, &uniforms_);
 }
 
@@ -155,14 +160,19 @@ void Denoiser::run(const DenoiseGeometry& g, const std::array<NoisyEye, 2>& eyes
     timed("composite", [&] { composite(history_[cur], g); });
   } else {
     const GLuint* in = filterA_;
+    if (params_.suppressFireflies) {
+      timed("firefly", [&] { firefly(filterA_, filterB_); });
+      in = filterB_;
+    }
     for (int i = 0; i < params_.iterations; ++i) {
       const GLuint* out = i == 0 ? history_[cur] : (in == filterB_ ? filterA_ : filterB_);
       timed(i + 1 == params_.iterations ? "atrous+composite" : "atrous",
-            [&] { atrous(i, in, out, g); });
+            [&] { atrous(i, in, out); });
       stages_[i + 1][0] = out[0];
       stages_[i + 1][1] = out[1];
       in = out;
     }
+    timed("resolve", [&] { resolve(g); });
   }
   ++frame_;
   historyValid_ = true;
@@ -194,6 +204,7 @@ void Denoiser::uploadUniforms(bool reset) {
               p.requireSameTriangle ? 1.0f : 0.0f};
   u.edge = {p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance, p.sigmaLuminanceSpecular};
   u.display = {p.exposure, p.specularFootprint, 0.0f, 0.0f};
+  u.tuning = {p.normalRejectSlope, p.resolveAlpha, float(p.resolveHistoryCap), p.fireflyFactor};
   u.frame = {width_, height_, reset ? 1 : 0, 0};
   api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);
   api::BindBufferBase(GL_UNIFORM_BUFFER, SVGF_UNIFORMS_BINDING, uniforms_);
@@ -229,18 +240,30 @@ void Denoiser::temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned 
   dispatch();
 }
 
-void Denoiser::bindCompositeOutputs(const DenoiseGeometry& g) const {
+void Denoiser::bindCompositeInputs() const {
   api::BindTextureUnit(SVGF_C_DIFFUSE_ALBEDO, inputs_[InDiffuseAlbedo]);
   api::BindTextureUnit(SVGF_C_SPECULAR_ALBEDO, inputs_[InSpecularAlbedo]);
   api::BindTextureUnit(SVGF_C_UNFILTERED, inputs_[InUnfiltered]);
+}
+
+void Denoiser::bindOutputs(const DenoiseGeometry& g) const {
   api::BindTextureUnit(SVGF_C_DEPTH, g.depth);
   bindImage(SVGF_I_LINEAR, linear_, GL_RGBA16F);
   bindImage(SVGF_I_DISPLAY, display_, GL_RGBA8);
   bindImage(SVGF_I_DEPTH, depth_, GL_R32F);
 }
 
-void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2],
-                      const DenoiseGeometry& g) {
+void Denoiser::firefly(const unsigned in[2], const unsigned out[2]) {
+  firefly_.use();
+  api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);
+  api::BindTextureUnit(SVGF_A_SPECULAR, in[1]);
+  api::BindTextureUnit(SVGF_A_GEOMETRY, geometry_[frame_ & 1]);
+  bindImage(SVGF_I_DIFFUSE, out[0], GL_RGBA16F);
+  bindImage(SVGF_I_SPECULAR, out[1], GL_RGBA16F);
+  dispatch();
+}
+
+void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2]) {
   const bool last = iteration + 1 == params_.iterations;
   const Program& program = last ? atrousComposite_ : atrous_;
   program.use();
@@ -251,7 +274,21 @@ void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2]
   api::BindTextureUnit(SVGF_A_AUX, aux_[frame_ & 1]);
   bindImage(SVGF_I_DIFFUSE, out[0], GL_RGBA16F);
   bindImage(SVGF_I_SPECULAR, out[1], GL_RGBA16F);
-  if (last) bindCompositeOutputs(g);
+  if (last) {
+    bindCompositeInputs();
+    bindImage(SVGF_I_LINEAR, composited_, GL_RGBA16F);
+  }
+  dispatch();
+}
+
+void Denoiser::resolve(const DenoiseGeometry& g) {
+  const int cur = frame_ & 1;
+  resolve_.use();
+  api::BindTextureUnit(SVGF_R_COLOR, composited_);
+  api::BindTextureUnit(SVGF_R_HISTORY, resolveHistory_[cur ^ 1]);
+  api::BindTextureUnit(SVGF_R_MOTION, g.motion);
+  bindImage(SVGF_I_HISTORY, resolveHistory_[cur], GL_RGBA16F);
+  bindOutputs(g);
   dispatch();
 }
 
@@ -259,7 +296,8 @@ void Denoiser::composite(const unsigned in[2], const DenoiseGeometry& g) {
   composite_.use();
   api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);
   api::BindTextureUnit(SVGF_A_SPECULAR, in[1]);
-  bindCompositeOutputs(g);
+  bindCompositeInputs();
+  bindOutputs(g);
   dispatch();
 }
 
@@ -288,6 +326,15 @@ std::vector<glm::vec4> Denoiser::readMoments(int eye) const {
 
 std::vector<glm::vec4> Denoiser::readAux(int eye) const {
   return readLayer<glm::vec4>(aux_[(frame_ - 1) & 1], GL_RGBA, GL_FLOAT, width_, height_, eye);
+}
+
+std::vector<glm::vec4> Denoiser::readComposited(int eye) const {
+  return readLayer<glm::vec4>(composited_, GL_RGBA, GL_FLOAT, width_, height_, eye);
+}
+
+std::vector<glm::vec4> Denoiser::readResolveHistory(int eye) const {
+  return readLayer<glm::vec4>(resolveHistory_[(frame_ - 1) & 1], GL_RGBA, GL_FLOAT, width_, height_,
+                              eye);
 }
 
 }  // namespace photovr::gl

@@ -10,13 +10,16 @@
 //                 RGBA32UI     geometry record (instance, triangle, depth, normal)
 //                 RGBA16F      history length, depth gradient / depth, roughness
 //                 RGBA32F      luminance moments (mu1, mu2) of diffuse and specular
+//   firefly    -> RGBA16F x 2  accumulated colour, clamped to the 3x3 neighbours' maximum
 //   a-trous i  -> RGBA16F x 2  filtered colour + variance, step 2^i (SVGF §4.3-4.4); the
 //                              output of iteration 0 is next frame's colour history
 //   composite  -> RGBA16F      linear colour (for the headset compositor)
 //                 RGBA8        display colour: exposure, PBR Neutral, sRGB-encoded
 //                 R32F         reversed-Z depth (the G-buffer's is overwritten next frame)
-// 'full' fuses the composite into the last a-trous iteration; 'temporal' and 'off' run it
-// alone (on the temporal output, resp. the raw input).
+//   resolve    -> RGBA16F      temporal anti-aliasing of the composite (Karis 2014), its
+//                              history (colour, sample count); writes the composite's outputs
+// 'full' fuses the composite into the last a-trous iteration and resolves it; 'temporal'
+// and 'off' run the composite alone (on the temporal output, resp. the raw input).
 #pragma once
 
 #include <array>
@@ -53,6 +56,10 @@ struct DenoiseParams {
   float depthRejectFactor = 10.0f;
   float depthRejectEpsilon = 5e-3f;
   float normalRejectDistance = 0.16f;
+  // ... plus 16 x the normal's screen-space variation |dn/dx| + |dn/dy| (Falcor's
+  // "distance / (fwidth(n) + 1e-2) > 16"). Without it no pixel of the spheres scene's
+  // small spheres kept history under the per-frame jitter (measured).
+  float normalRejectSlope = 16.0f;
   // Also reject history from another triangle of the same instance (issue 5, item 1).
   // Off by default, measured: with the per-frame sub-pixel jitter, pixels of finely
   // tessellated meshes (the spheres' ~4-pixel triangles) change triangle every frame, so
@@ -60,7 +67,11 @@ struct DenoiseParams {
   // 0.129). SVGF itself tests the mesh id only (sec. 4.1); depth and normal tests catch
   // real disocclusions within a mesh.
   bool requireSameTriangle = false;
-  // SVGF §4.4 / §5: sigma_z = 1 (eq. 3), sigma_n = 128 (eq. 4), sigma_l = 4 (eq. 5).
+  // SVGF §4.4 / §5: sigma_z = 1 (eq. 3), sigma_n = 128 (eq. 4), sigma_l = 4 (eq. 5). The
+  // variance in eq. 5 is that of the temporally averaged colour the filter receives (one
+  // sample's x sum w_k^2, svgf_temporal.comp), as eq. 2 propagates it, where SVGF uses one
+  // sample's: with one sample's the spheres' contact shadows were smeared away (48x54,
+  // relMSE 0.124 -> 0.079 with the change; cornell unchanged, atrium 0.227 -> 0.212).
   float sigmaDepth = 1.0f;
   float sigmaNormal = 128.0f;
   float sigmaLuminance = 4.0f;
@@ -70,8 +81,22 @@ struct DenoiseParams {
   // Ours: specular is filtered while step <= max(1, footprint x alpha), alpha = roughness^2
   // (GGX lobe width); 16 lets roughness 1 use all 5 levels, 0.5 the first 3.
   float specularFootprint = 16.0f;
+  // Before the a-trous filter, clamp each lobe's accumulated luminance to 'factor' x the
+  // brightest of its 3x3 neighbours on the same surface (rank-conditioned rank selection
+  // as NRD ReLAX's anti-firefly; shaders/svgf_firefly.comp). Factor 4, measured (96x108,
+  // 8 frames, relMSE): 1 (plain RCRS) also darkened ordinary noise peaks, cornell 0.0111
+  // -> 0.0207 and atrium 0.0205 -> 0.0423; 4 costs them 20 % / 3 % and takes spheres from
+  // 0.0192 to 0.0152 (its metal spheres' fireflies are 10-100x their neighbours).
+  bool suppressFireflies = true;
+  float fireflyFactor = 4.0f;
   // SVGF §4.3: 5 a-trous iterations (steps 1, 2, 4, 8, 16).
   int iterations = 5;
+  // Resolve: temporal anti-aliasing of the re-modulated result, which ends SVGF's pipeline
+  // (fig. 2; Karis 2014): blend weight of the new frame, 0.1 as Falcor's TAA pass and
+  // Salvi 2016, a plain mean over the first 10 frames ...
+  float resolveAlpha = 0.1f;
+  // ... with the per-pixel sample count capped (only n < 1 / alpha matters).
+  int resolveHistoryCap = 16;
   // Display transform: linear scale before the tone map.
   float exposure = 1.0f;
 };
@@ -120,6 +145,10 @@ class Denoiser {
   std::vector<glm::vec4> readStage(int stage, bool specular, int eye) const;
   std::vector<glm::vec4> readMoments(int eye) const;
   std::vector<glm::vec4> readAux(int eye) const;  // history length, grad depth / depth, roughness
+  // The resolve's input (the composite of the filtered lobes) and its history (colour,
+  // sample count) after the last 'full' run.
+  std::vector<glm::vec4> readComposited(int eye) const;
+  std::vector<glm::vec4> readResolveHistory(int eye) const;
 
   // For the headset compositor: 2-layer arrays, layer = eye.
   unsigned displayTexture() const { return display_; }  // RGBA8, sRGB-encoded values
@@ -139,16 +168,19 @@ class Denoiser {
   void upload(const std::array<NoisyEye, 2>& eyes, int eyeCount);
   void uploadUniforms(bool reset);
   void temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned outSpecular);
-  void atrous(int iteration, const unsigned in[2], const unsigned out[2], const DenoiseGeometry& g);
+  void firefly(const unsigned in[2], const unsigned out[2]);
+  void atrous(int iteration, const unsigned in[2], const unsigned out[2]);
   void composite(const unsigned in[2], const DenoiseGeometry& g);
-  void bindCompositeOutputs(const DenoiseGeometry& g) const;
+  void resolve(const DenoiseGeometry& g);
+  void bindCompositeInputs() const;
+  void bindOutputs(const DenoiseGeometry& g) const;
   void dispatch() const;
   template <typename F>
   void timed(const char* name, F&& pass);
 
   int width_, height_;
   DenoiseParams params_;
-  Program temporal_, atrous_, atrousComposite_, composite_;
+  Program temporal_, firefly_, atrous_, atrousComposite_, composite_, resolve_;
   unsigned uniforms_ = 0;
   unsigned inputs_[InCount] = {};
   // Ping-ponged by frame parity: [frame & 1] is written, the other read as "previous".
@@ -156,7 +188,9 @@ class Denoiser {
   unsigned history_[2][2] = {};                 // [parity][diffuse, specular]
   unsigned filterA_[2] = {}, filterB_[2] = {};  // [diffuse, specular]
   unsigned linear_ = 0, display_ = 0, depth_ = 0;
-  unsigned stages_[6][2] = {};  // what readStage() reads
+  unsigned composited_ = 0;          // the fused composite's linear colour, resolve input
+  unsigned resolveHistory_[2] = {};  // [parity]
+  unsigned stages_[6][2] = {};       // what readStage() reads
   int frame_ = 0;
   int eyeCount_ = 2;
   bool historyValid_ = false;

@@ -39,9 +39,14 @@ using ivec4 = glm::ivec4;
 #define SVGF_C_SPECULAR_ALBEDO 5
 #define SVGF_C_UNFILTERED 6
 #define SVGF_C_DEPTH 7
+// Texture units of the resolve (temporal anti-aliasing) pass; it also writes the outputs.
+#define SVGF_R_COLOR 0
+#define SVGF_R_HISTORY 1
+#define SVGF_R_MOTION 2
 
-// Image units. Temporal: colour, geometry, aux, moments. A-trous: colour.
-// Compositing (standalone or fused into the last a-trous iteration): outputs.
+// Image units. Temporal: colour, geometry, aux, moments. A-trous: colour. Compositing
+// (standalone or fused into the last a-trous iteration) and resolve: outputs; the fused
+// composite writes its linear colour for the resolve to SVGF_I_LINEAR.
 #define SVGF_I_DIFFUSE 0
 #define SVGF_I_SPECULAR 1
 #define SVGF_I_GEOMETRY 2
@@ -50,6 +55,7 @@ using ivec4 = glm::ivec4;
 #define SVGF_I_LINEAR 5
 #define SVGF_I_DISPLAY 6
 #define SVGF_I_DEPTH 7
+#define SVGF_I_HISTORY 0  // resolve history
 
 // Background pixels carry this instance id in the visibility record (gbuffer_shared.h).
 #define SVGF_NO_INSTANCE 0xFFFFFFFFu
@@ -65,6 +71,7 @@ struct DenoiseUniforms {
                   // 1 = require the same triangle id
   vec4 edge;      // sigma_z, sigma_n, sigma_l diffuse, sigma_l specular
   vec4 display;   // exposure, specular footprint (steps per unit GGX alpha), -, -
+  vec4 tuning;    // normal reject slope, resolve blend weight, resolve history cap, -
   ivec4 frame;    // eye width, eye height, 1 = reset history, -
 };
 

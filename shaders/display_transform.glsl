@@ -1,6 +1,6 @@
-// Display transform for people: Khronos PBR Neutral and the sRGB encoding. The same
-// functions as svgf_common.glsl's (which is the denoiser's and carries its bindings), kept
-// in step with core/tonemap.cpp; tests compare both GL copies with the CPU version.
+// Display transform for people: Khronos PBR Neutral and the sRGB encoding, shared by the
+// denoiser's composite (through svgf_common.glsl) and the headset's panel output; kept in
+// step with core/tonemap.cpp, and tests compare both passes with the CPU version.
 
 // Khronos PBR Neutral (2024 reference GLSL); mirrors core/tonemap.cpp tonemapPbrNeutral.
 vec3 tonemapPbrNeutral(vec3 color) {

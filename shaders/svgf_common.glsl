@@ -1,6 +1,7 @@
 // Helpers shared by the SVGF passes (Schied et al., "Spatiotemporal Variance-Guided
 // Filtering", HPG 2017; section and equation numbers below refer to that paper).
 #include "denoise_shared.h"
+#include "display_transform.glsl"
 
 layout(std140, binding = SVGF_UNIFORMS_BINDING) uniform DenoiseBlock { DenoiseUniforms params; };
 
@@ -61,25 +62,3 @@ float normalWeight(vec3 n, vec3 nq) { return pow(max(0.0, dot(n, nq)), params.ed
 
 // Eq. (5): luminance weight; 'phi' = sigma_l * sqrt(g3x3(Var)) + epsilon.
 float luminanceWeight(float l, float lq, float phi) { return exp(-abs(l - lq) / phi); }
-
-// Khronos PBR Neutral (2024 reference GLSL); mirrors core/tonemap.cpp tonemapPbrNeutral.
-vec3 tonemapPbrNeutral(vec3 color) {
-  const float kStartCompression = 0.8 - 0.04;
-  const float kDesaturation = 0.15;
-  float x = min(color.r, min(color.g, color.b));
-  float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
-  color -= offset;
-  float peak = max(color.r, max(color.g, color.b));
-  if (peak < kStartCompression) return color;
-  const float d = 1.0 - kStartCompression;
-  float newPeak = 1.0 - d * d / (peak + d - kStartCompression);
-  color *= newPeak / peak;
-  float g = 1.0 - 1.0 / (kDesaturation * (peak - newPeak) + 1.0);
-  return mix(color, vec3(newPeak), g);
-}
-
-// IEC 61966-2-1 sRGB encoding.
-vec3 linearToSrgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
-}

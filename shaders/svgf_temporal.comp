@@ -46,16 +46,36 @@ vec2 relativeDepthGradient(ivec3 p, float d) {
   return g / d;
 }
 
+// Screen-space variation of the normal, |dn/dx| + |dn/dy| (the fwidth() of Falcor's
+// G-buffer, which scales its normal test): per axis the smaller one-sided difference to a
+// neighbour of the same instance, so a silhouette does not count as curvature.
+float normalWidth(ivec3 p, uint instance, vec3 n) {
+  float sum = 0.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    float best = 1e30;
+    for (int side = -1; side <= 1; side += 2) {
+      ivec3 q = p + ivec3(axis == 0 ? ivec2(side, 0) : ivec2(0, side), 0);
+      if (!inside(q.xy) || texelFetch(gVisibility, q, 0).x != instance) continue;
+      best = min(best, distance(n, normalize(texelFetch(gNormal, q, 0).xyz)));
+    }
+    sum += best < 1e29 ? best : 0.0;
+  }
+  return sum;
+}
+
 struct Current {
   Geometry geo;
   vec2 relGradient;
+  float normalWidth;
 };
 
 // Back-projection consistency (§4.1: depth, normal and mesh-id tests). Thresholds from
 // NVIDIA's reference implementation (Falcor SVGFReproject): reject when the depth change
 // exceeds 10x the per-pixel depth slope (plus an epsilon, here relative to the depth),
-// or when |n - n_prev| > 16 x 1e-2 (Falcor's normal slope term is omitted: world normals
-// of a static surface do not change between frames).
+// or when |n - n_prev| > 16 x (fwidth(n) + 1e-2). The fwidth term matters under the
+// per-frame jitter: on a sphere a few pixels wide the normal seen by a pixel moves by
+// up to half its screen-space slope between frames (measured: without it the spheres
+// scene's spheres never kept any history).
 bool consistent(Current c, ivec3 q) {
   if (!inside(q.xy)) return false;
   Geometry g = unpackGeometry(texelFetch(prevGeometry, q, 0));
@@ -65,7 +85,7 @@ bool consistent(Current c, ivec3 q) {
   float z = 1.0 / c.geo.depth, zq = 1.0 / max(g.depth, 1e-30);
   float slope = abs(c.relGradient.x) + abs(c.relGradient.y) + params.reject.y;
   if (abs(z - zq) / (z * slope) > params.reject.x) return false;
-  return distance(c.geo.normal, g.normal) <= params.reject.z;
+  return distance(c.geo.normal, g.normal) <= params.reject.z + params.tuning.x * c.normalWidth;
 }
 
 struct History {
@@ -116,6 +136,18 @@ History reproject(Current c, ivec3 p) {
   return h;
 }
 
+// Sum of the squared weights of the samples in the moving average after n frames, with
+// alpha_k = max(alpha, 1 / k) as in main(): 1 / n while that is the larger, then the
+// recursion s_k = (1 - a)^2 s_(k-1) + a^2 (-> alpha / (2 - alpha)).
+float sumSquaredWeights(float n) {
+  float s = 0.0;
+  for (float k = 1.0; k <= n; k += 1.0) {
+    float a = max(params.temporal.x, 1.0 / k);
+    s = (1.0 - a) * (1.0 - a) * s + a * a;
+  }
+  return s;
+}
+
 vec4 luminanceMoments(vec3 diffuse, vec3 specular) {
   float ld = luminance(diffuse), ls = luminance(specular);
   return vec4(ld, ld * ld, ls, ls * ls);
@@ -157,7 +189,8 @@ void main() {
     imageStore(oMoments, p, vec4(0.0));
     return;
   }
-  Current c = Current(Geometry(vis.x, vis.y, d, n), relativeDepthGradient(p, d));
+  Current c = Current(Geometry(vis.x, vis.y, d, n), relativeDepthGradient(p, d),
+                      normalWidth(p, vis.x, n));
   vec3 diffuse = min(texelFetch(inDiffuse, p, 0).rgb, vec3(SVGF_HALF_MAX));
   vec3 specular = min(texelFetch(inSpecular, p, 0).rgb, vec3(SVGF_HALF_MAX));
   vec4 moments = luminanceMoments(diffuse, specular);
@@ -174,7 +207,9 @@ void main() {
     moments = mix(h.moments, moments, am);
   }
   vec4 m = len < params.temporal.w ? spatialMoments(c, p) : moments;
-  vec2 variance = max(vec2(0.0), m.yw - m.xz * m.xz);  // §4.2: Var = mu2 - mu1^2
+  // §4.2: Var = mu2 - mu1^2 is the variance of one sample; the colour passed on is the
+  // moving average of 'len' of them, whose variance is Var sum w_k^2.
+  vec2 variance = max(vec2(0.0), m.yw - m.xz * m.xz) * sumSquaredWeights(len);
 
   imageStore(oDiffuse, p, roundToHalf(vec4(diffuse, variance.x)));
   imageStore(oSpecular, p, roundToHalf(vec4(specular, variance.y)));

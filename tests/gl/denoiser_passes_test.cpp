@@ -44,8 +44,8 @@ glm::vec3 noise(int x, int y, int e, int t, int channel, float scale) {
 // Frame t. Layer 0 scrolls left by one pixel per frame (motion +1, 0): a tilted plane
 // (instance 0, triangles in 3-pixel blocks) and a box (instance 1) ride along; pixel (3, 0)
 // is background. At t = 1 a 3x3 block jumps 2x in depth on the same instance and
-// another instance appears in the lower right. Layer 1 is
-// static with motion (0.5, 0.25): bilinear taps straddle the box and the image border.
+// another instance appears in the lower right. Layer 1 is static with motion (0.5, 0.25):
+// bilinear taps straddle the box, the image border and a curved surface.
 SyntheticFrame tinyFrame(int t) {
   SyntheticFrame f(kW, kH);
   for (int y = 0; y < kH; ++y)
@@ -64,8 +64,11 @@ SyntheticFrame tinyFrame(int t) {
       }
       f.layer[0].motion[i] = glm::vec2(1.0f, 0.0f);
       const bool box1 = x >= 2 && x <= 3 && y >= 1 && y <= 3;
-      f.setSurface(1, x, y, box1 ? 1 : 0, 0, box1 ? 0.25f : 0.2f - 0.01f * float(x),
-                   box1 ? glm::vec3(0, 0.6f, 0.8f) : glm::vec3(0, 0, 1));
+      // The plane's normal turns ~0.3 per pixel: its bilinear taps pass the normal test
+      // only through its slope term (Falcor's fwidth).
+      f.setSurface(
+          1, x, y, box1 ? 1 : 0, 0, box1 ? 0.25f : 0.2f - 0.01f * float(x),
+          box1 ? glm::vec3(0, 0.6f, 0.8f) : glm::normalize(glm::vec3(0.3f * float(x - 4), 0, 1)));
       f.layer[1].roughness[i] = box1 ? 0.5f : 0.8f;
       f.layer[1].motion[i] = glm::vec2(0.5f, 0.25f);
       for (int e = 0; e < 2; ++e) {
@@ -170,10 +173,14 @@ TEST(DenoiserPasses, TriangleTestCanBeSwitchedOff) {
   }
 }
 
+// The firefly clamp and two a-trous iterations. With a clamp factor of 1 (plain
+// rank-conditioned rank selection) tinyFrame's uniform noise leaves about one pixel in
+// nine brighter than all its neighbours: the clamp acts.
 TEST(DenoiserPasses, AtrousIterationsMatchCpu) {
   testing::osmesaContext();
   gl::DenoiseParams params;
   params.iterations = 2;  // stages 0 (temporal), 1 (step 1) and 2 (step 2) all stay intact
+  params.fireflyFactor = 1.0f;
   gl::Denoiser dn(kW, kH, params);
   SyntheticGBuffer gbuffer(kW, kH);
   const SyntheticFrame f = tinyFrame(0);
@@ -181,7 +188,9 @@ TEST(DenoiserPasses, AtrousIterationsMatchCpu) {
   dn.run(gbuffer.geometry(), f.eyes(), 2, gl::DenoiseMode::Full, true);
   for (int e = 0; e < 2; ++e) {
     const auto aux = dn.readAux(e);
-    auto in = testing::CpuAtrousOut{dn.readStage(0, false, e), dn.readStage(0, true, e)};
+    // Iteration 0 filters the temporal output after the firefly clamp.
+    auto in = testing::CpuAtrousOut{testing::cpuFirefly(params, f, e, dn.readStage(0, false, e)),
+                                    testing::cpuFirefly(params, f, e, dn.readStage(0, true, e))};
     for (int stage = 1; stage <= 2; ++stage) {
       const int step = 1 << (stage - 1);
       const auto cpu = testing::cpuAtrous(params, f, e, in.diffuse, in.specular, aux, step);
@@ -231,6 +240,36 @@ TEST(DenoiserPasses, CompositeMatchesCpuToneMap) {
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(int(display[i][k]), int(want[k]), 1) << i;
       EXPECT_EQ(display[i].a, 255);
       EXPECT_EQ(depth[i], l.depth[i]);
+    }
+  }
+}
+
+// The resolve: first frame passes the composite through; the second blends the
+// re-projected, clamped history (both layers' motions: whole-pixel and fractional).
+TEST(DenoiserPasses, ResolveMatchesCpu) {
+  testing::osmesaContext();
+  gl::DenoiseParams params;
+  params.iterations = 1;
+  gl::Denoiser dn(kW, kH, params);
+  SyntheticGBuffer gbuffer(kW, kH);
+  std::array<std::vector<glm::vec4>, 2> history;
+  for (int t = 0; t < 2; ++t) {
+    const SyntheticFrame f = tinyFrame(t);
+    gbuffer.upload(f);
+    dn.run(gbuffer.geometry(), f.eyes(), 2, gl::DenoiseMode::Full, t == 0);
+    for (int e = 0; e < 2; ++e) {
+      const std::vector<glm::vec4> color = dn.readComposited(e);
+      const std::vector<glm::vec4> got = dn.readResolveHistory(e);
+      const std::vector<glm::vec3> linear = dn.readLinear(e);
+      for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+          const size_t i = f.index(x, y);
+          const glm::vec4 want =
+              testing::cpuResolve(params, f, e, x, y, color, t == 0 ? nullptr : &history[e]);
+          expectNear4(got[i], want, "resolve t=" + std::to_string(t) + " " + at(e, x, y));
+          for (int k = 0; k < 3; ++k) EXPECT_EQ(linear[i][k], got[i][k]) << at(e, x, y);
+        }
+      history[e] = got;
     }
   }
 }

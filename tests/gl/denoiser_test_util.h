@@ -192,7 +192,36 @@ struct CpuTemporal {
   float length;
 };
 
-// SVGF §4.1: consistency of one previous-frame pixel (depth, normal, ids).
+// |dn/dx| + |dn/dy|, per axis the smaller one-sided difference to the same instance.
+inline float cpuNormalWidth(const SyntheticFrame& f, int e, int x, int y) {
+  const auto& l = f.layer[e];
+  const glm::vec3 n = glm::normalize(l.normal[f.index(x, y)]);
+  float sum = 0.0f;
+  for (int axis = 0; axis < 2; ++axis) {
+    float best = 1e30f;
+    for (int side = -1; side <= 1; side += 2) {
+      const int qx = x + (axis == 0 ? side : 0), qy = y + (axis == 1 ? side : 0);
+      if (!f.inside(qx, qy) || l.visibility[f.index(qx, qy)].x != l.visibility[f.index(x, y)].x)
+        continue;
+      best = std::min(best, glm::distance(n, glm::normalize(l.normal[f.index(qx, qy)])));
+    }
+    sum += best < 1e29f ? best : 0.0f;
+  }
+  return sum;
+}
+
+// Variance of a moving average of n unit-variance samples with alpha_k = max(alpha, 1/k).
+inline float cpuSumSquaredWeights(const gl::DenoiseParams& p, float n) {
+  float s = 0.0f;
+  for (int k = 1; k <= int(n); ++k) {
+    const float a = std::max(p.colorAlpha, 1.0f / float(k));
+    s = (1.0f - a) * (1.0f - a) * s + a * a;
+  }
+  return s;
+}
+
+// SVGF §4.1: consistency of one previous-frame pixel (depth, normal, ids); the normal
+// threshold grows with the normal's screen-space variation (Falcor).
 inline bool cpuConsistent(const gl::DenoiseParams& p, const SyntheticFrame& cur,
                           const SyntheticFrame& prev, int e, int x, int y, int qx, int qy) {
   if (!prev.inside(qx, qy)) return false;
@@ -205,7 +234,7 @@ inline bool cpuConsistent(const gl::DenoiseParams& p, const SyntheticFrame& cur,
   const float slope = std::abs(g.x) + std::abs(g.y) + p.depthRejectEpsilon;
   if (std::abs(z - zq) / (z * slope) > p.depthRejectFactor) return false;
   return glm::distance(glm::normalize(a.normal[c]), glm::normalize(b.normal[q])) <=
-         p.normalRejectDistance;
+         p.normalRejectDistance + p.normalRejectSlope * cpuNormalWidth(cur, e, x, y);
 }
 
 inline CpuTemporal cpuTemporal(const gl::DenoiseParams& p, const SyntheticFrame& cur,
@@ -253,8 +282,33 @@ inline CpuTemporal cpuTemporal(const gl::DenoiseParams& p, const SyntheticFrame&
     m = glm::mix(hm / sum, m, am);
   }
   const glm::vec4 mv = len < p.temporalVarianceFrames ? cpuSpatialMoments(p, cur, e, x, y) : m;
-  const float vd = std::max(0.0f, mv.y - mv.x * mv.x), vs = std::max(0.0f, mv.w - mv.z * mv.z);
+  // The variance of the averaged colour: one sample's times sum w_k^2.
+  const float s2 = cpuSumSquaredWeights(p, len);
+  const float vd = std::max(0.0f, mv.y - mv.x * mv.x) * s2;
+  const float vs = std::max(0.0f, mv.w - mv.z * mv.z) * s2;
   return {glm::vec4(d, vd), glm::vec4(s, vs), m, len};
+}
+
+// Firefly suppression (rank-conditioned rank selection, from above): each lobe's
+// luminance clamped to 'factor' x the largest of its 3x3 neighbours on the same instance.
+inline std::vector<glm::vec4> cpuFirefly(const gl::DenoiseParams& p, const SyntheticFrame& f, int e,
+                                         const std::vector<glm::vec4>& in) {
+  const auto& vis = f.layer[e].visibility;
+  std::vector<glm::vec4> out = in;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      const size_t c = f.index(x, y);
+      if (vis[c].x == kBackground) continue;
+      float hi = -1.0f;
+      for (int v = -1; v <= 1; ++v)
+        for (int u = -1; u <= 1; ++u)
+          if ((u || v) && f.inside(x + u, y + v) && vis[f.index(x + u, y + v)].x == vis[c].x)
+            hi = std::max(hi, luminance(glm::vec3(in[f.index(x + u, y + v)])));
+      const float l = luminance(glm::vec3(in[c]));
+      hi *= p.fireflyFactor;
+      if (hi >= 0.0f && l > hi) out[c] = glm::vec4(glm::vec3(in[c]) * (hi / l), in[c].w);
+    }
+  return out;
 }
 
 // One a-trous iteration (SVGF §4.3 eqs. 1-2, weights §4.4 eqs. 3-5) of one layer.
@@ -314,6 +368,61 @@ inline CpuAtrousOut cpuAtrous(const gl::DenoiseParams& p, const SyntheticFrame& 
       out.specular[c] = glm::vec4(glm::vec3(ss) / ws.y, ss.w / (ws.y * ws.y));
     }
   return out;
+}
+
+// The resolve (Karis 2014): history through a 4x4 Catmull-Rom kernel in the range-compressed
+// space c / (1 + luma), clamped into the YCoCg box of the 3x3 neighbourhood, blended with
+// weight max(alpha, 1 / n). 'history' is null on the first frame. Returns colour, count.
+inline glm::vec3 cpuCompress(glm::vec3 c) {
+  return c / (1.0f + luminance(c));
+}
+inline glm::vec3 cpuExpand(glm::vec3 c) {
+  return c / std::max(1.0f - luminance(c), 1.0f / 65504.0f);
+}
+inline glm::vec3 cpuToYCoCg(glm::vec3 c) {
+  return {0.25f * c.r + 0.5f * c.g + 0.25f * c.b, 0.5f * (c.r - c.b),
+          -0.25f * c.r + 0.5f * c.g - 0.25f * c.b};
+}
+inline glm::vec3 cpuFromYCoCg(glm::vec3 c) {
+  return {c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z};
+}
+inline glm::vec4 cpuCatmullRom(float t) {
+  return {t * (-0.5f + t * (1.0f - 0.5f * t)), 1.0f + t * t * (-2.5f + 1.5f * t),
+          t * (0.5f + t * (2.0f - 1.5f * t)), t * t * (-0.5f + 0.5f * t)};
+}
+inline glm::vec4 cpuResolve(const gl::DenoiseParams& p, const SyntheticFrame& f, int e, int x,
+                            int y, const std::vector<glm::vec4>& color,
+                            const std::vector<glm::vec4>* history) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (int v = -1; v <= 1; ++v)
+    for (int u = -1; u <= 1; ++u)
+      if (f.inside(x + u, y + v)) {
+        const glm::vec3 c = cpuToYCoCg(glm::vec3(color[f.index(x + u, y + v)]));
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
+      }
+  glm::vec4 h(0);
+  if (history) {
+    const glm::vec2 pos = glm::vec2(x, y) + f.layer[e].motion[f.index(x, y)];
+    const glm::vec2 base = glm::floor(pos), fr = pos - base;
+    const glm::vec4 wx = cpuCatmullRom(fr.x), wy = cpuCatmullRom(fr.y);
+    glm::vec4 sum(0);
+    float wsum = 0;
+    for (int v = 0; v < 4; ++v)
+      for (int u = 0; u < 4; ++u) {
+        const int qx = int(base.x) + u - 1, qy = int(base.y) + v - 1;
+        const float w = wx[u] * wy[v];
+        if (w == 0.0f || !f.inside(qx, qy)) continue;
+        const glm::vec4 t = (*history)[f.index(qx, qy)];
+        sum += w * glm::vec4(cpuCompress(glm::vec3(t)), t.w);
+        wsum += w;
+      }
+    if (wsum > 0) h = glm::vec4(cpuExpand(glm::vec3(sum) / wsum), sum.w / wsum);
+  }
+  const float n = std::min(h.w + 1.0f, float(p.resolveHistoryCap));
+  const float a = std::max(p.resolveAlpha, 1.0f / n);
+  const glm::vec3 clamped = cpuFromYCoCg(glm::clamp(cpuToYCoCg(glm::vec3(h)), lo, hi));
+  return {glm::mix(clamped, glm::vec3(color[f.index(x, y)]), a), n};
 }
 
 }  // namespace photovr::testing

@@ -1,8 +1,11 @@
-// Issue 5's quality claim, measured: a 1-spp hybrid frame denoised with 8 frames of
-// history (static camera) against the raw 1-spp frame, both judged by relMSE against a
-// converged reference. The issue's target is 10x; measured at 48x54: cornell 1.32 -> 0.168
-// (7.9x), spheres 0.129 -> 0.108 (1.2x: specular fireflies on the metal spheres survive the
-// filter). Until the target is met this guards the improvement that exists.
+// Issue 5's quality claim: a 1-spp hybrid frame denoised with 8 frames of history (static
+// camera) against the raw 1-spp frame, both judged by relMSE against a converged
+// reference, on each built-in scene.
+//
+// One 96x108 eye. The filter's footprints are in pixels (5 a-trous levels reach 32 pixels
+// out), so at 48x54 the contact shadows of the spheres scene were 1-2 pixels tall inside a
+// kernel wider than the image and the ratio measured under half of what it is at 96x108
+// (3.5x vs 8.0x, before the firefly clamp); 96x108 is still 1/100 of a DK2 eye.
 #include <gtest/gtest.h>
 
 #include "core/builtin_scenes.h"
@@ -16,7 +19,7 @@
 namespace photovr {
 namespace {
 
-constexpr int kW = 48, kH = 54;
+constexpr int kW = 96, kH = 108;
 
 EyeCamera eyeOf(const Scene& s, uint32_t frame) {
   StereoRig rig;
@@ -24,16 +27,38 @@ EyeCamera eyeOf(const Scene& s, uint32_t frame) {
   return rig.eye(Eye::Left, kW, kH, haltonJitter(frame));
 }
 
-// 512 spp over 32 jitter positions.
-std::vector<glm::vec3> reference(const Scene& s) {
-  return testing::referenceImage(s, eyeOf(s, 0), 32, 16, 77);
+// 'spp' samples over 32 jitter positions (the box-filtered pixel the resolve converges
+// to; with 16 the spheres' ratio measured 8 % lower). The reference's own relMSE (~raw /
+// spp) adds to the denoised image's measured error: the ratios below are pessimistic.
+std::vector<glm::vec3> reference(const Scene& s, int spp) {
+  return testing::referenceImage(s, eyeOf(s, 0), 32, spp / 32, 77);
 }
 
-class DenoiseQuality : public ::testing::TestWithParam<const char*> {};
+struct Case {
+  const char* scene;
+  // cornell and atrium: 128 (their references cost 4x spheres' per sample; 1.5 / 128 =
+  // 0.012 inflates the measured error ~1.6x, still far inside the 10x); spheres: 512,
+  // whose denoised error is close to its guard (0.15 / 512 = 3e-4 against 0.015).
+  int referenceSpp;
+  // Required raw / denoised relMSE; the issue asks for 10x. Measured here (raw ->
+  // denoised): cornell 1.56 -> 0.0178 (87x), atrium 1.60 -> 0.0275 (58x), spheres 0.154 ->
+  // 0.0152 (10.2x). Before the resolve pass, the fwidth normal test, the variance of the
+  // mean and the firefly clamp (at 48x54): cornell 7.9x, spheres 1.2x, atrium 7.7x.
+  // cornell and atrium are guarded at the target, 6-9x under what they measure. spheres
+  // meets it only just: with tracer seeds 2-4 it measured 9.0x, 9.9x and 8.6x (its raw
+  // relMSE is what varies; seed 1's raw frame held a firefly worth 58x). The remaining
+  // error is the sun-lit floor, whose 1-spp light selection is bimodal so that the
+  // variance-guided filter smears the spheres' contact shadows. Guarded at 8x, under the
+  // lowest seed measured.
+  double required;
+};
+
+class DenoiseQuality : public ::testing::TestWithParam<Case> {};
 
 TEST_P(DenoiseQuality, EightFramesOfHistoryBeatTheRawFrame) {
-  const Scene scene = makeBuiltinScene(GetParam());
-  const std::vector<glm::vec3> ref = reference(scene);
+  const Case c = GetParam();
+  const Scene scene = makeBuiltinScene(c.scene);
+  const std::vector<glm::vec3> ref = reference(scene, c.referenceSpp);
   testing::osmesaContext();
   HybridRenderer renderer(scene, kW, kH, true, TraceSettings{});
   gl::Denoiser denoiser(kW, kH);
@@ -52,12 +77,13 @@ TEST_P(DenoiseQuality, EightFramesOfHistoryBeatTheRawFrame) {
   const double filtered = relMse(denoised, ref);
   RecordProperty("raw_relmse", std::to_string(raw));
   RecordProperty("denoised_relmse", std::to_string(filtered));
-  // The reference's own relMSE (512 spp) is ~1/512 of the raw frame's: negligible here.
-  const double required = std::string(GetParam()) == "cornell" ? 5.0 : 1.1;
-  EXPECT_LT(filtered * required, raw) << GetParam() << ": raw " << raw << ", denoised " << filtered;
+  EXPECT_LT(filtered * c.required, raw) << c.scene << ": raw " << raw << ", denoised " << filtered;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, DenoiseQuality, ::testing::Values("cornell", "spheres"));
+INSTANTIATE_TEST_SUITE_P(Scenes, DenoiseQuality,
+                         ::testing::Values(Case{"cornell", 128, 10.0}, Case{"spheres", 512, 8.0},
+                                           Case{"atrium", 128, 10.0}),
+                         [](const auto& info) { return std::string(info.param.scene); });
 
 }  // namespace
 }  // namespace photovr

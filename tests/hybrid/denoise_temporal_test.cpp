@@ -4,8 +4,8 @@
 // - errors at geometric edges do not grow with the filter on (the edge-stopping weights);
 // - flicker, defined as the mean relative luminance change between consecutive frames after
 //   re-projecting the previous frame with the G-buffer's motion vectors (nearest pixel,
-//   second half of the sequence), is lower with the denoiser's temporal accumulation than
-//   with the raw frames.
+//   second half of the sequence), is at least 5x lower with the denoiser than with the
+//   raw frames (the target).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -118,6 +118,9 @@ TEST(DenoiseTemporal, MotionEdgesAndFlicker) {
   const Sequence raw = run(scene, true, gl::DenoiseMode::Off);
   const double eStill = relMse(still.lastDenoised, ref), eMoving = relMse(moving.lastDenoised, ref);
   RecordProperty("relmse_static_moving", std::to_string(eStill) + " " + std::to_string(eMoving));
+  // The bound. Measured 0.0142 static, 0.0223 moving (1.6x): the resolve's
+  // history is re-sampled every frame the camera moves and the light's outline bleeds a
+  // little into the ceiling (bilinear re-sampling in linear HDR measured 3.8x).
   EXPECT_LT(eMoving, 2.0 * eStill) << "static " << eStill << ", moving " << eMoving;
 
   const std::vector<bool> edge = edgePixels(still.lastGBuffer);
@@ -128,17 +131,20 @@ TEST(DenoiseTemporal, MotionEdgesAndFlicker) {
   RecordProperty("edge_on_off_rest_on_off", std::to_string(edgeOn) + " " + std::to_string(edgeOff) +
                                                 " " + std::to_string(restOn) + " " +
                                                 std::to_string(restOff));
-  // The filter must not blur edges into error: measured 2.95 -> 1.02 at edges (the
-  // weights stop the filter there, so less noise is removed than elsewhere: 2.23 -> 0.016).
+  // The filter must not blur edges into error: measured 2.95 -> 0.018 at edges, 2.23 ->
+  // 0.013 elsewhere (before the resolve pass: 2.95 -> 1.02 and 2.23 -> 0.016). Edges
+  // keep a little more of their error than flat areas (the weights stop the filter
+  // there); the share may at most double: edge / rest with the filter 1.36, without 1.32.
   EXPECT_LT(edgeOn, edgeOff) << "the filter made edges worse";
   EXPECT_LT(restOn, restOff);
+  EXPECT_LT(edgeOn / restOn, 2.0 * edgeOff / restOff) << "error moved to the edges";
 
   RecordProperty("flicker_full_off",
                  std::to_string(moving.flicker) + " " + std::to_string(raw.flicker));
-  // The target is 5x; measured 0.119 vs 0.262 (2.2x): the per-frame jitter moves
-  // edges and the metal box's specular speckles by sub-pixel amounts that nearest-pixel
-  // re-projection counts as change. Guarded at 2x until the target is met.
-  EXPECT_LT(2.0 * moving.flicker, raw.flicker)
+  // The target is 5x. Measured 0.0111 vs 0.262 (24x); before the resolve pass
+  // 0.119 (2.2x): the per-frame jitter moved edges, the light's outline and the metal
+  // box's speckles, which SVGF's per-surface history does not average.
+  EXPECT_LT(5.0 * moving.flicker, raw.flicker)
       << "full " << moving.flicker << ", off " << raw.flicker;
 }
 
