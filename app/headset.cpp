@@ -97,28 +97,13 @@ std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::
   return {rig.eye(Eye::Left, width, height, jitter), rig.eye(Eye::Right, width, height, jitter)};
 }
 
-gl::LensParams lensParamsOf(const hmd::LensModel& m) {
-  gl::LensParams p;
-  for (int i = 0; i < 11; ++i) p.k[i] = float(m.lens.k[i]);
-  p.maxR = float(m.lens.maxR);
-  p.metresPerTanAngle = float(m.lens.metresPerTanAngle);
-  for (int i = 0; i < 4; ++i) p.chroma[i] = float(m.lens.chroma[i]);
-  p.panelWidthM = float(m.panel.widthM);
-  p.panelHeightM = float(m.panel.heightM);
-  p.verticalCentreM = float(m.panel.verticalCentreM);
-  p.lensSeparationM = float(m.panel.lensSeparationM);
-  p.hResolution = m.panel.hResolution;
-  p.vResolution = m.panel.vResolution;
-  return p;
-}
-
 namespace {
 
 gl::LensParams panelLens(int panelWidth, int panelHeight) {
   hmd::LensModel model;  // DK2 defaults (dk2.md §2, §6); only the pixel count changes
   model.panel.hResolution = panelWidth;
   model.panel.vResolution = panelHeight;
-  return lensParamsOf(model);
+  return gl::lensParamsOf(model);
 }
 
 std::array<FovTangents, 2> dk2Fov() {

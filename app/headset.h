@@ -43,8 +43,6 @@ Pose composePose(const Pose& base, const Pose& tracked);
 // Both eyes of a head pose at the DK2's FOV (core/camera.h StereoRig).
 std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::vec2 jitter);
 
-gl::LensParams lensParamsOf(const hmd::LensModel& model);
-
 // Re-projection of a frame's two eyes to a newer pose, the lens, and the panel output.
 class HeadsetCompositor {
  public:

@@ -10,7 +10,7 @@
 // few-percent effects. Skip-on and skip-off runs alternate and each keeps its best of
 // --repeats, so a busy spell hits both alike. The converged row is whole frames (process
 // CPU time): there the skip drops whole frames.
-// A light-class skip changes the noise too (a placeholder takes a share of light samples),
+// A light-class skip changes the noise too (a stand-in takes a share of light samples),
 // so each row also has the estimated relMSE of its frames' mean and the time saved at equal
 // error: time to a given error is proportional to time x relMSE (relMSE falls as 1/n).
 #include <sys/resource.h>
@@ -100,7 +100,7 @@ bool applies(const Scene& scene, const std::string& skip) {
   WorkSkips off;
   off.disable(skip);
   if (skip == "punctual-lights" || skip == "area-lights" || skip == "environment")
-    return LightSet(scene, off).placeholderCount() > 0;
+    return LightSet(scene, off).standInCount() > 0;
   if (skip == "any-hit")
     return std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& mesh) {
       const Material& m = scene.materials[mesh.material];

@@ -97,6 +97,23 @@ struct LensParams {
   int hResolution = 1920, vResolution = 1080;  // both eyes, landscape
 };
 
+// Flattens an hmd::LensModel (or anything with its fields) without gl/ depending on hmd/.
+template <typename LensModel>
+LensParams lensParamsOf(const LensModel& m) {
+  LensParams p;
+  for (int i = 0; i < 11; ++i) p.k[i] = float(m.lens.k[i]);
+  p.maxR = float(m.lens.maxR);
+  p.metresPerTanAngle = float(m.lens.metresPerTanAngle);
+  for (int i = 0; i < 4; ++i) p.chroma[i] = float(m.lens.chroma[i]);
+  p.panelWidthM = float(m.panel.widthM);
+  p.panelHeightM = float(m.panel.heightM);
+  p.verticalCentreM = float(m.panel.verticalCentreM);
+  p.lensSeparationM = float(m.panel.lensSeparationM);
+  p.hResolution = m.panel.hResolution;
+  p.vResolution = m.panel.vResolution;
+  return p;
+}
+
 // One panel pixel's debug record: the tan-angle each channel samples, and whether the
 // lens sees the pixel.
 struct DistortSample {

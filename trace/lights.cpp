@@ -103,30 +103,28 @@ LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
       weights.push_back(std::max(avg, 1e-6f) * kPi * kPi * r * r);
     }
   }
-  addPlaceholders(skips, weights);
+  addStandIns(skips, weights);
   if (!weights.empty()) selection_ = Distribution1D(weights);
 }
 
-void LightSet::addPlaceholders(const WorkSkips& skips, std::vector<float>& weights) {
+void LightSet::addStandIns(const WorkSkips& skips, std::vector<float>& weights) {
   const Bounds b = scene_.worldBounds();
   sceneCentre_ = b.empty() ? glm::vec3(0.0f) : b.center();
-  if (!skips.punctualLights && punctual_.empty()) placeholders_.push_back(Placeholder::Punctual);
-  if (!skips.areaLights && triangles_.empty()) placeholders_.push_back(Placeholder::Area);
-  if (!skips.environment && environmentIndex_ < 0)
-    placeholders_.push_back(Placeholder::Environment);
+  if (!skips.punctualLights && punctual_.empty()) standIns_.push_back(StandIn::Punctual);
+  if (!skips.areaLights && triangles_.empty()) standIns_.push_back(StandIn::Area);
+  if (!skips.environment && environmentIndex_ < 0) standIns_.push_back(StandIn::Environment);
   // A renderer that cannot know a light is dark gives it a typical share: the mean weight.
   float mean = 1.0f;
   if (!weights.empty()) {
     mean = 0.0f;
     for (float w : weights) mean += w / float(weights.size());
   }
-  weights.insert(weights.end(), placeholders_.size(), mean);
+  weights.insert(weights.end(), standIns_.size(), mean);
 }
 
-LightSample LightSet::samplePlaceholder(Placeholder kind, const glm::vec3& point,
-                                        glm::vec2 u) const {
+LightSample LightSet::sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u) const {
   LightSample s;
-  if (kind == Placeholder::Environment) {
+  if (kind == StandIn::Environment) {
     s.direction = sampleUniformSphere(u);
     s.distance = kInfinity;
     s.pdf = 1.0f / (4.0f * kPi);
@@ -137,8 +135,8 @@ LightSample LightSet::samplePlaceholder(Placeholder kind, const glm::vec3& point
   if (!(dist > 0.0f)) return s;
   s.direction = d / dist;
   s.distance = dist;
-  s.isDelta = kind == Placeholder::Punctual;
-  s.isArea = kind == Placeholder::Area;
+  s.isDelta = kind == StandIn::Punctual;
+  s.isArea = kind == StandIn::Area;
   s.pdf = 1.0f;  // nominal: the radiance is 0 whatever the density
   return s;
 }
@@ -188,10 +186,10 @@ LightSample LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u)
   if (empty()) return {};
   const Distribution1D::Discrete pick = selection_.sampleDiscrete(uSelect);
   const int n = int(punctual_.size()), m = int(triangles_.size());
-  const int firstPlaceholder = n + m + (environmentIndex_ >= 0 ? 1 : 0);
+  const int firstStandIn = n + m + (environmentIndex_ >= 0 ? 1 : 0);
   LightSample s;
-  if (pick.index >= firstPlaceholder) {
-    s = samplePlaceholder(placeholders_[pick.index - firstPlaceholder], point, u);
+  if (pick.index >= firstStandIn) {
+    s = sampleStandIn(standIns_[pick.index - firstStandIn], point, u);
   } else if (pick.index < n) {
     s = samplePunctual(*punctual_[pick.index], point);
     s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;

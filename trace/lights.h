@@ -28,14 +28,14 @@ struct LightSample {
 class LightSet {
  public:
   // Keeps references to 'scene' (and its environment). With a light-class skip turned off
-  // (work_skips.h), a class the scene lacks is represented by a dark placeholder.
+  // (work_skips.h), a class the scene lacks is represented by a dark stand-in.
   explicit LightSet(const Scene& scene, const WorkSkips& skips = {});
 
   bool empty() const { return selection_.size() == 0; }
   bool hasEnvironment() const { return !environment_.empty(); }
   size_t punctualCount() const { return punctual_.size(); }
   size_t areaTriangleCount() const { return triangles_.size(); }
-  size_t placeholderCount() const { return placeholders_.size(); }
+  size_t standInCount() const { return standIns_.size(); }
 
   LightSample sample(const glm::vec3& point, float uSelect, glm::vec2 u) const;
 
@@ -61,9 +61,9 @@ class LightSet {
   LightSample samplePunctual(const Light& light, const glm::vec3& point) const;
   LightSample sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u) const;
   // A light class the scene lacks, sampled like a real light of that class but dark.
-  enum class Placeholder { Punctual, Area, Environment };
-  LightSample samplePlaceholder(Placeholder kind, const glm::vec3& point, glm::vec2 u) const;
-  void addPlaceholders(const WorkSkips& skips, std::vector<float>& weights);
+  enum class StandIn { Punctual, Area, Environment };
+  LightSample sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u) const;
+  void addStandIns(const WorkSkips& skips, std::vector<float>& weights);
 
   const Scene& scene_;
   std::vector<const Light*> punctual_;
@@ -72,9 +72,9 @@ class LightSet {
   std::vector<uint32_t> triangleSlots_;  // per triangle of emissive instances: light or kNoLight
   EnvironmentSampler environment_;
   int environmentIndex_ = -1;  // in selection_; -1: no environment sampler
-  std::vector<Placeholder> placeholders_;
+  std::vector<StandIn> standIns_;
   glm::vec3 sceneCentre_{0.0f};
-  // Over punctual_, then triangles_, then the environment, then placeholders_.
+  // Over punctual_, then triangles_, then the environment, then standIns_.
   Distribution1D selection_;
 };
 

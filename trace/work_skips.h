@@ -14,10 +14,10 @@ namespace photovr {
 
 struct WorkSkips {
   // No punctual light: none is sampled and no shadow ray is cast for one. Off: a dark
-  // placeholder point light at the scene centre takes a typical share of light samples,
+  // stand-in point light at the scene centre takes a typical share of light samples,
   // each with its shadow ray (a renderer that cannot know a light is dark must test it).
   bool punctualLights = true;
-  // No emissive triangle: no area-light sampling. Off: a dark placeholder area light.
+  // No emissive triangle: no area-light sampling. Off: a dark stand-in area light.
   bool areaLights = true;
   // No environment: it is not sampled (misses are black). Off: a black environment is
   // sampled uniformly over the sphere like any other light, shadow ray included.

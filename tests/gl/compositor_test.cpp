@@ -213,21 +213,6 @@ TEST(Compositor, CoarseGridReprojectionMatchesTheAnalyticImage) {
   checkNearbyPose(2);
 }
 
-gl::LensParams lensParams(const hmd::LensModel& m) {
-  gl::LensParams p;
-  for (int i = 0; i < 11; ++i) p.k[i] = float(m.lens.k[i]);
-  p.maxR = float(m.lens.maxR);
-  p.metresPerTanAngle = float(m.lens.metresPerTanAngle);
-  for (int i = 0; i < 4; ++i) p.chroma[i] = float(m.lens.chroma[i]);
-  p.panelWidthM = float(m.panel.widthM);
-  p.panelHeightM = float(m.panel.heightM);
-  p.verticalCentreM = float(m.panel.verticalCentreM);
-  p.lensSeparationM = float(m.panel.lensSeparationM);
-  p.hResolution = m.panel.hResolution;
-  p.vResolution = m.panel.vResolution;
-  return p;
-}
-
 TEST(Compositor, DistortionSamplesTheLensModelAndItsVisibleArea) {
   testing::osmesaContext();
   hmd::LensModel m;
@@ -253,7 +238,7 @@ TEST(Compositor, DistortionSamplesTheLensModelAndItsVisibleArea) {
     r.upload(e, color[e].data(), depth.data());
   }
   r.run(cams, cams);
-  gl::Distorter d(lensParams(m), ew, eh, fov);
+  gl::Distorter d(gl::lensParamsOf(m), ew, eh, fov);
   for (int e = 0; e < 2; ++e) {
     const glm::vec2 c = d.lensCentre(e);
     const glm::dvec2 ref = hmd::lensCentre(m.panel, Eye(e));

@@ -15,8 +15,8 @@ namespace {
 
 struct SkipRun {
   testing::FrameStatistics stats;
-  uint64_t placeholderRays = 0;  // shadow rays towards a dark placeholder (see below)
-  size_t filteredMeshes = 0, placeholders = 0;
+  uint64_t standInRays = 0;  // shadow rays towards a dark stand-in (see below)
+  size_t filteredMeshes = 0, standIns = 0;
 };
 
 // 'frames' independent 2-spp frames of one 24 x 27 eye (a ~1/40 DK2 eye: fast, still every
@@ -38,7 +38,7 @@ SkipRun render(const Scene& scene, const WorkSkips& skips, int frames = 16) {
   for (int f = 0; f < frames; ++f)
     colors.push_back(renderPathTraced(ctx, cam, 0, uint32_t(f)).color);
   embree.setRecorder(nullptr);
-  // A placeholder's shadow ray ends at the scene centre (punctual, area) or never (the
+  // A stand-in's shadow ray ends at the scene centre (punctual, area) or never (the
   // black environment). The scenes below have no real light of that kind.
   const Bounds b = scene.worldBounds();
   const float radius = glm::length(b.extent());
@@ -46,11 +46,11 @@ SkipRun render(const Scene& scene, const WorkSkips& skips, int frames = 16) {
     if (r.kind != RecordedRay::Kind::Occluded) continue;
     const bool toCentre = std::isfinite(r.tfar) &&
                           glm::length(r.origin + r.dir * r.tfar - b.center()) < 1e-3f * radius;
-    run.placeholderRays += toCentre || !std::isfinite(r.tfar);
+    run.standInRays += toCentre || !std::isfinite(r.tfar);
   }
   run.stats = testing::statisticsOf(colors, cam.width, cam.height);
   run.filteredMeshes = embree.stats().filteredMeshes;
-  run.placeholders = lights.placeholderCount();
+  run.standIns = lights.standInCount();
   return run;
 }
 
@@ -60,14 +60,14 @@ WorkSkips without(const std::string& name) {
   return s;
 }
 
-// Light classes the scene lacks: off, a dark placeholder is sampled with a shadow ray each.
+// Light classes the scene lacks: off, a dark stand-in is sampled with a shadow ray each.
 void expectLightSkipHarmless(const std::string& sceneName, const std::string& skip) {
   const Scene scene = makeBuiltinScene(sceneName);
   const SkipRun on = render(scene, {}), off = render(scene, without(skip));
-  EXPECT_EQ(on.placeholders, 0u);
-  EXPECT_EQ(off.placeholders, 1u);
-  EXPECT_EQ(on.placeholderRays, 0u);
-  EXPECT_GT(off.placeholderRays, 0u);
+  EXPECT_EQ(on.standIns, 0u);
+  EXPECT_EQ(off.standIns, 1u);
+  EXPECT_EQ(on.standInRays, 0u);
+  EXPECT_GT(off.standInRays, 0u);
   EXPECT_LT(testing::maxRegionZ(on.stats, off.stats, testing::kRegions), testing::kMaxZ);
 }
 
@@ -77,7 +77,7 @@ TEST(WorkSkips, NoPunctualLightsNoShadowRaysForThem) {
 
 TEST(WorkSkips, NoEmissiveTrianglesNoAreaSampling) {
   // Spheres without its sun and sky would be black; keep a point light instead, far from
-  // the scene centre so its shadow rays are told apart from the placeholder's.
+  // the scene centre so its shadow rays are told apart from the stand-in's.
   Scene scene = makeBuiltinScene("spheres");
   scene.environment.type = Environment::Type::None;
   Light lamp;
@@ -86,9 +86,9 @@ TEST(WorkSkips, NoEmissiveTrianglesNoAreaSampling) {
   lamp.intensity = 50.0f;
   scene.lights = {lamp};
   const SkipRun on = render(scene, {}), off = render(scene, without("area-lights"));
-  EXPECT_EQ(off.placeholders, 1u);
-  EXPECT_EQ(on.placeholderRays, 0u);
-  EXPECT_GT(off.placeholderRays, 0u);
+  EXPECT_EQ(off.standIns, 1u);
+  EXPECT_EQ(on.standInRays, 0u);
+  EXPECT_GT(off.standInRays, 0u);
   EXPECT_LT(testing::maxRegionZ(on.stats, off.stats, testing::kRegions), testing::kMaxZ);
 }
 
@@ -110,8 +110,8 @@ TEST(WorkSkips, AnyHitFilterOnlyWhereNeeded) {
 TEST(WorkSkips, PresentLightsAreNeverReplaced) {
   // Cornell has an area light: turning the area-light skip off adds nothing.
   const Scene scene = makeBuiltinScene("cornell");
-  EXPECT_EQ(LightSet(scene, without("area-lights")).placeholderCount(), 0u);
-  EXPECT_EQ(LightSet(scene, without("all")).placeholderCount(), 2u);  // punctual + env
+  EXPECT_EQ(LightSet(scene, without("area-lights")).standInCount(), 0u);
+  EXPECT_EQ(LightSet(scene, without("all")).standInCount(), 2u);  // punctual + env
 }
 
 TEST(WorkSkips, NamesParse) {
