@@ -19,8 +19,11 @@ build: setup
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build $(BUILD) -j$(JOBS)
 
-# Tracer vs raw Embree throughput on the built-in scenes (bench/bench_trace.cpp); writes
-# out/bench/bench_trace.csv. Not a test: its numbers depend on the machine and its load.
+# The separate benchmarks, each writing a CSV to out/bench/: tracer vs raw Embree
+# (bench_trace), hybrid stage times (bench_hybrid), denoiser passes and equal-time quality
+# (bench_denoise), what each skip saves (bench_skips), compositor vs G-buffer and lens
+# sampling (bench_compositor). `photovr bench [--quick]` is the error-vs-time harness. Not
+# tests: their numbers depend on the machine and its load.
 bench: build
 	./$(BUILD)/bench/photovr_bench_trace --out out/bench
 	./$(BUILD)/bench/photovr_bench_hybrid --out out/bench
