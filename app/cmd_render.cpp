@@ -112,7 +112,11 @@ int runRender(const Args& args) {
   const HmdSpec hmd = extractHmdOption(rest);
   const HmdSequenceOptions sequence = extractHmdSequenceOptions(rest, hmd);
   const RenderRequest request = parseRenderRequest(rest);
-  if (hmd.kind != "none") return renderHmdSequence(request, hmd, sequence);
+  if (hmd.kind != "none") {
+    if (request.converge > 0.0)
+      throw UsageError("--converge: not with --hmd (the head moves, so frames do not converge)");
+    return renderHmdSequence(request, hmd, sequence);
+  }
   if (request.mode == "pt") return renderPathTracedMode(request);
   if (request.mode == "gbuffer") return renderGBufferMode(request);
   return renderHybridMode(request);

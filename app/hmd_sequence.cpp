@@ -72,14 +72,6 @@ glm::ivec2 parsePanelSize(const std::string& text) {
   return {w, h};
 }
 
-TraceSettings settingsOf(const RenderRequest& r) {
-  TraceSettings s;
-  s.samplesPerPixel = r.spp;
-  s.maxBounces = r.bounces;
-  s.seed = r.seed;
-  return s;
-}
-
 std::vector<glm::vec4> withAlpha(const std::vector<glm::vec3>& c) {
   std::vector<glm::vec4> out(c.size());
   for (size_t i = 0; i < c.size(); ++i) out[i] = glm::vec4(c[i], 1.0f);
@@ -159,7 +151,7 @@ class HmdSequence {
       : r_(r),
         context_(createRenderContext(r.backend)),
         renderer_(r.scene, r.width, r.height,
-                  context_->hasExtension("GL_ARB_shader_viewport_layer_array"), settingsOf(r)),
+                  context_->hasExtension("GL_ARB_shader_viewport_layer_array"), traceSettingsOf(r)),
         denoiser_(makeDenoiser(r)),
         compositor_(r.width, r.height, o.panelWidth, o.panelHeight, o.rotation),
         maps_(lensSampleMaps(r.sampling, r.width, r.height, r.spp)),

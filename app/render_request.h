@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "app/view.h"
 #include "core/scene.h"
+#include "trace/path_tracer.h"
 #include "trace/work_skips.h"
 
 namespace photovr::app {
@@ -33,6 +34,9 @@ RenderRequest parseRenderRequest(const Args& args);  // loads the scene too
 inline const char* eyeFolder(const View& v, int eye) {
   return v.stereo ? (eye == 0 ? "left" : "right") : "mono";
 }
+
+// The tracer's settings a request asks for (spp, bounces, seed, skips).
+TraceSettings traceSettingsOf(const RenderRequest& request);
 
 int renderGBufferMode(const RenderRequest& request);
 int renderPathTracedMode(const RenderRequest& request);

@@ -23,15 +23,6 @@ double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-TraceSettings settingsOf(const RenderRequest& r) {
-  TraceSettings s;
-  s.samplesPerPixel = r.spp;
-  s.maxBounces = r.bounces;
-  s.seed = r.seed;
-  s.skips = r.skips;
-  return s;
-}
-
 gl::DenoiseParams paramsOf(const RenderRequest& r) {
   gl::DenoiseParams params;
   params.exposure = r.exposure;
@@ -142,11 +133,20 @@ struct GuideBuffers {
 
 }  // namespace
 
+TraceSettings traceSettingsOf(const RenderRequest& r) {
+  TraceSettings s;
+  s.samplesPerPixel = r.spp;
+  s.maxBounces = r.bounces;
+  s.seed = r.seed;
+  s.skips = r.skips;
+  return s;
+}
+
 int renderPathTracedMode(const RenderRequest& r) {
   const auto t0 = Clock::now();
   const EmbreeScene embree(r.scene, r.skips);
   const LightSet lights(r.scene, r.skips);
-  const TraceContext ctx{r.scene, embree, lights, settingsOf(r)};
+  const TraceContext ctx{r.scene, embree, lights, traceSettingsOf(r)};
   const double buildMs = 1e3 * secondsSince(t0);
   const int eyeCount = r.view.stereo ? 2 : 1;
   // Denoising pt uses the same denoiser, guided by a G-buffer drawn only for its guides
@@ -189,7 +189,7 @@ int renderHybridMode(const RenderRequest& r) {
   auto context = createRenderContext(r.backend);
   HybridRenderer renderer(r.scene, r.width, r.height,
                           context->hasExtension("GL_ARB_shader_viewport_layer_array"),
-                          settingsOf(r));
+                          traceSettingsOf(r));
   const int eyeCount = r.view.stereo ? 2 : 1;
   HybridFrameTimes total;
   const gl::DenoiseMode denoiseMode = gl::parseDenoiseMode(r.denoise);
