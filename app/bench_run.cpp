@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <functional>
 #include <memory>
 
@@ -196,6 +197,7 @@ double meanOf(const ConfigResult& r, double FrameRecord::*field) {
 }
 
 double timeToError(const std::vector<FrameRecord>& c, double error) {
+  if (c.empty()) return std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < c.size(); ++i)
     if (c[i].relMse <= error && c[i - 1].relMse > error)
       return logLogAt(error, c[i - 1].relMse, c[i - 1].elapsedMs, c[i].relMse, c[i].elapsedMs);
@@ -204,6 +206,7 @@ double timeToError(const std::vector<FrameRecord>& c, double error) {
 }
 
 double errorAtTime(const std::vector<FrameRecord>& c, double ms) {
+  if (c.empty()) return std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < c.size(); ++i)
     if (c[i].elapsedMs >= ms && c[i - 1].elapsedMs < ms)
       return logLogAt(ms, c[i - 1].elapsedMs, c[i - 1].relMse, c[i].elapsedMs, c[i].relMse);

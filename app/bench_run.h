@@ -51,6 +51,7 @@ ConfigResult runConfig(const BenchConfig& config, const BenchScene& scene, gl::C
 
 // Time (ms) the configuration needs to reach relMSE 'error', interpolating its curve in
 // log-log; outside the curve, extrapolated from its nearest end as relMSE ~ 1 / time.
+// Both are infinite for an empty curve.
 double timeToError(const std::vector<FrameRecord>& curve, double error);
 // relMSE the configuration reaches after 'ms', interpolated likewise.
 double errorAtTime(const std::vector<FrameRecord>& curve, double ms);
