@@ -3,17 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/stopwatch.h"
 #include "gl/gbuffer_readback.h"
 #include "hybrid/hybrid_renderer.h"
 
 namespace photovr::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 template <typename F>
 double bestMs(int repeats, F&& f) {

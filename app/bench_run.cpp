@@ -13,18 +13,14 @@
 #include "app/trace_output.h"
 #include "core/error_metrics.h"
 #include "core/perceptual_metrics.h"
+#include "core/stopwatch.h"
 #include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
 
 namespace photovr::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Eyes = std::array<EyeImage, 2>;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 TraceSettings settingsOf(const BenchConfig& c) {
   TraceSettings s;

@@ -12,15 +12,14 @@
 #include "app/trace_output.h"
 #include "core/error.h"
 #include "core/error_metrics.h"
-#include "core/scene_transform.h"
 #include "core/heatmap.h"
+#include "core/scene_transform.h"
+#include "core/stopwatch.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/primary_rays.h"
 
 namespace photovr::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 const char* const kAbHelp =
     "usage: photovr ab [options]\n"
@@ -72,10 +71,6 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
   return a;
-}
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
 // A 4-frame sequence rendered both ways: sequential (synchronous read-back) and pipelined

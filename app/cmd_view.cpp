@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/scene_transform.h"
+#include "core/stopwatch.h"
 #include "gl/denoiser.h"
 #include "gl/headset_monitor.h"
 #include "gl/window_input.h"
@@ -56,12 +57,6 @@ const char* const kViewCommandHelp =
     "  --out DIR              where F12 saves the panel image (default .)\n"
     "  --frames N             exit after N refreshes that showed a rendered frame\n"
     "  --screenshot FILE      with --frames: save the last refresh, overlay included (PNG)\n";
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 glm::ivec2 parseSize(const Options& o, const std::string& name, glm::ivec2 fallback) {
   if (!o.has(name)) return fallback;

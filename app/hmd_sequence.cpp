@@ -21,6 +21,7 @@
 #include "app/sample_maps.h"
 #include "app/trace_output.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "gl/denoiser.h"
 #include "hmd/dk2_driver.h"
 #include "hybrid/denoise_input.h"
@@ -44,12 +45,6 @@ const char* const kHmdRenderHelp =
     "  disoccluded fractions)\n";
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Pulls "--name value" out of 'args' into 'taken'.
 void takeOption(Args& args, const std::string& name, Args& taken) {

@@ -5,16 +5,11 @@
 #include <utility>
 
 #include "app/sample_maps.h"
+#include "core/stopwatch.h"
 #include "hybrid/hybrid_tracer.h"
 
 namespace photovr::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Lens-matched maps are built for this spp and scaled per frame (the spp slider moves).
 constexpr int kLensMapSpp = 64;

@@ -17,6 +17,7 @@
 
 #include "app/headset.h"
 #include "core/builtin_scenes.h"
+#include "core/stopwatch.h"
 #include "gl/context.h"
 #include "gl/gbuffer.h"
 #include "gl/scene_gpu.h"
@@ -25,12 +26,6 @@
 
 namespace photovr {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 struct Config {
   std::string out = "out/bench";

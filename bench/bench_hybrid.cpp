@@ -14,18 +14,13 @@
 #include <string>
 
 #include "core/builtin_scenes.h"
+#include "core/stopwatch.h"
 #include "gl/context.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/primary_rays.h"
 
 namespace photovr {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 struct Row {
   std::string scene;

@@ -2,19 +2,10 @@
 
 #include <chrono>
 
+#include "core/stopwatch.h"
 #include "gl/gbuffer_readback.h"
 
 namespace photovr {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msBetween(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-}  // namespace
-
 HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, bool hasLayerExtension,
                                const TraceSettings& settings)
     : scene_(scene),

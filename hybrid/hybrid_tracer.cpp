@@ -7,19 +7,15 @@
 #include <chrono>
 #include <limits>
 
+#include "core/stopwatch.h"
 #include "hybrid/hit_rebuild.h"
 #include "trace/pixel_estimate.h"
 
 namespace photovr {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr size_t kGrain = 256;  // pixels per task
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 }  // namespace
 
