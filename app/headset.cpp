@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "gl/gl_api.h"
+#include "gl/textures.h"
 #include "hmd/fusion.h"
 #include "hmd/recording.h"
 #include "hmd/sensor_stream.h"
@@ -97,58 +99,53 @@ std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::
   return {rig.eye(Eye::Left, width, height, jitter), rig.eye(Eye::Right, width, height, jitter)};
 }
 
-namespace {
-
-gl::LensParams panelLens(int panelWidth, int panelHeight) {
+gl::LensParams dk2PanelLens(int panelWidth, int panelHeight) {
   hmd::LensModel model;  // DK2 defaults (dk2.md §2, §6); only the pixel count changes
   model.panel.hResolution = panelWidth;
   model.panel.vResolution = panelHeight;
   return gl::lensParamsOf(model);
 }
 
-std::array<FovTangents, 2> dk2Fov() {
+std::array<FovTangents, 2> dk2EyeFov() {
   const FovTangents left = FovTangents::dk2LeftEye();
   return {left, left.mirrored()};
 }
 
-gl::ReprojectParams gridParams() {
-  gl::ReprojectParams p;
-  p.gridStep = HeadsetCompositor::kGridStep;
-  return p;
-}
-
-}  // namespace
-
 HeadsetCompositor::HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight,
                                      int rotation)
-    : reprojector_(eyeWidth, eyeHeight, gridParams()),
-      distorter_(panelLens(panelWidth, panelHeight), eyeWidth, eyeHeight, dk2Fov()),
-      output_(panelWidth, panelHeight, rotation) {}
+    : timewarp_(dk2PanelLens(panelWidth, panelHeight), eyeWidth, eyeHeight, dk2EyeFov()),
+      output_(panelWidth, panelHeight, rotation),
+      inColor_(gl::makeArrayTexture(GL_RGBA32F, eyeWidth, eyeHeight, 2)),
+      inDepth_(gl::makeArrayTexture(GL_R32F, eyeWidth, eyeHeight, 2)) {
+  gl::api::ClearTexImage(inColor_, 0, GL_RGBA, GL_FLOAT, nullptr);
+  gl::api::ClearTexImage(inDepth_, 0, GL_RED, GL_FLOAT, nullptr);
+}
+
+HeadsetCompositor::~HeadsetCompositor() {
+  const GLuint t[] = {inColor_, inDepth_};
+  gl::api::DeleteTextures(2, t);
+}
 
 void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
                             const std::array<EyeCamera, 2>& from,
                             const std::array<EyeCamera, 2>& to, float exposure, bool reproject) {
-  if (reproject) {
-    reprojector_.run(colorArray, depthArray, from, to);
-    distorter_.run(reprojector_.colorTexture());
-  } else {
-    distorter_.run(colorArray);
-  }
-  output_.run(distorter_.panelTexture(), exposure);
+  timewarp_.runPanel(colorArray, depthArray, from, reproject ? to : from, exposure, output_);
 }
 
 void HeadsetCompositor::upload(int eye, const std::vector<glm::vec4>& color,
                                const std::vector<float>& depth) {
-  const size_t n = size_t(reprojector_.width()) * reprojector_.height();
-  if (color.size() != n || depth.size() != n) throw UsageError("compositor: eye image size");
-  reprojector_.upload(eye, color.data(), depth.data());
+  const int w = timewarp_.eyeWidth(), h = timewarp_.eyeHeight();
+  if (eye < 0 || eye > 1 || color.size() != size_t(w) * h || depth.size() != color.size())
+    throw UsageError("compositor: eye image size");
+  gl::api::PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl::api::TextureSubImage3D(inColor_, 0, 0, 0, eye, w, h, 1, GL_RGBA, GL_FLOAT, color.data());
+  gl::api::TextureSubImage3D(inDepth_, 0, 0, 0, eye, w, h, 1, GL_RED, GL_FLOAT, depth.data());
 }
 
 void HeadsetCompositor::runUploaded(const std::array<EyeCamera, 2>& from,
                                     const std::array<EyeCamera, 2>& to, float exposure,
                                     bool reproject) {
-  run(reprojector_.inputColorTexture(), reprojector_.inputDepthTexture(), from, to, exposure,
-      reproject);
+  run(inColor_, inDepth_, from, to, exposure, reproject);
 }
 
 Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height) {

@@ -12,6 +12,7 @@
 #include "core/image_io.h"
 #include "core/camera.h"
 #include "gl/compositor.h"
+#include "gl/timewarp.h"
 #include "gl/panel_output.h"
 #include "hmd/head_tracker.h"
 #include "hmd/lens.h"
@@ -43,18 +44,19 @@ Pose composePose(const Pose& base, const Pose& tracked);
 // Both eyes of a head pose at the DK2's FOV (core/camera.h StereoRig).
 std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::vec2 jitter);
 
-// Re-projection of a frame's two eyes to a newer pose, the lens, and the panel output.
+// Re-projection of a frame's two eyes to a newer pose, the lens, and the panel output, in
+// one pass (gl/timewarp.h).
 class HeadsetCompositor {
  public:
   // eyeWidth x eyeHeight eyes with the DK2 FOV onto a panelWidth x panelHeight panel
-  // (the DK2's physical panel at that pixel count), output turned by 'rotation'. The
-  // re-projection grid has a vertex every kGridStep pixels: 2 keeps planes exact and costs a
-  // third of step 1 on llvmpipe, whose vertex stage runs on one thread (bench_compositor).
-  static constexpr int kGridStep = 2;
+  // (the DK2's physical panel at that pixel count), output turned by 'rotation'.
   HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight, int rotation);
+  ~HeadsetCompositor();
+  HeadsetCompositor(const HeadsetCompositor&) = delete;
+  HeadsetCompositor& operator=(const HeadsetCompositor&) = delete;
 
   // 'colorArray'/'depthArray' (2-layer, linear colour / reversed-Z depth) were rendered
-  // with 'from'; shown at 'to'. reproject = false distorts the frame as rendered.
+  // with 'from'; shown at 'to'. reproject = false shows the frame as rendered.
   void run(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
            const std::array<EyeCamera, 2>& to, float exposure, bool reproject = true);
   // The same from CPU images (rows bottom-up).
@@ -62,16 +64,21 @@ class HeadsetCompositor {
   void runUploaded(const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
                    float exposure, bool reproject = true);
 
-  gl::Reprojector& reprojector() { return reprojector_; }
-  gl::Distorter& distorter() { return distorter_; }
+  gl::Timewarp& timewarp() { return timewarp_; }
+  const gl::Timewarp& timewarp() const { return timewarp_; }
   gl::PanelOutput& output() { return output_; }
   const gl::PanelOutput& output() const { return output_; }
 
  private:
-  gl::Reprojector reprojector_;
-  gl::Distorter distorter_;
+  gl::Timewarp timewarp_;
   gl::PanelOutput output_;
+  unsigned inColor_ = 0, inDepth_ = 0;  // what upload() fills
 };
+
+// The DK2 lens at a panel's pixel count (hmd::LensModel defaults, dk2.md §2, §6) and the
+// DK2 eye FOVs, as the compositor uses them.
+gl::LensParams dk2PanelLens(int panelWidth, int panelHeight);
+std::array<FovTangents, 2> dk2EyeFov();
 
 // GL's bottom-up RGBA8 rows to a top-down RGB image.
 Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height);

@@ -170,8 +170,8 @@ class HmdSequence {
         glm::angle(glm::normalize(glm::inverse(trackedA.orientation) * trackedB.orientation)));
     log_.row() << k << ',' << t.render << ',' << t.display << ',' << turn << ','
                << glm::length(trackedB.position - trackedA.position) << ','
-               << compositor_.reprojector().stats(0).disoccludedFraction() << ','
-               << compositor_.reprojector().stats(1).disoccludedFraction() << ',' << renderMs << ','
+               << compositor_.timewarp().stats(0).disoccludedFraction() << ','
+               << compositor_.timewarp().stats(1).disoccludedFraction() << ',' << renderMs << ','
                << compositorMs << '\n';
   }
 

@@ -1,6 +1,8 @@
 // The headset compositor against the renderer (issue 6, "bench/"):
-//  1. time of re-projection + distortion + panel output vs the stereo G-buffer pass, both
-//     eyes at the same eye size in the same run (target: compositor <= 1/4 of G-buffer);
+//  1. time of the compositor (gl/timewarp.h: re-projection + distortion + panel output in
+//     one pass) vs the stereo G-buffer pass, both eyes at the same eye size in the same run
+//     (target: compositor <= 1/4 of G-buffer), for a moved and a turned head, and of the
+//     three-pass reference chain it replaced (grid re-projection, distortion, output);
 //  2. the fraction of eye-buffer pixels the hidden-area mask skips (hmd/lens_maps.h);
 //  3. lens-matched vs uniform sampling at equal perceived error: relMSE against a
 //     converged reference, weighted per pixel by the lens density (display pixels per
@@ -33,7 +35,8 @@ struct Config {
   int repeats = 3;
   int lensW = 160, lensH = 180;  // sampling study: small, it needs a converged reference
   int uniformSpp = 4, referenceSpp = 64, referenceRounds = 4, trials = 3;
-  bool samplingStudy = true;  // --sampling 0: timing and mask only
+  bool samplingStudy = true;                              // --sampling 0: timing and mask only
+  std::vector<std::string> scenes = builtinSceneNames();  // --scene NAME: one
 };
 
 std::array<EyeCamera, 2> sceneEyes(const Scene& s, int w, int h, glm::vec2 jitter) {
@@ -49,28 +52,43 @@ std::array<EyeCamera, 2> movedEyes(const Scene& s, int w, int h) {
   return app::headEyes(p, w, h, glm::vec2(0.0f));
 }
 
-// Re-projection grid steps measured (gl/compositor.h ReprojectParams::gridStep).
-constexpr int kSteps[] = {1, 2, 4};
+// Wall time and process CPU time of a pass (llvmpipe runs GL on the CPU, so CPU time is
+// the work; it stays put when something else shares the cores, wall time does not).
+struct PassTime {
+  double wall = 0, cpu = 0;
+  PassTime operator+(const PassTime& o) const { return {wall + o.wall, cpu + o.cpu}; }
+};
 
 struct Timing {
   std::string scene;
-  double gbuffer = 0, reproject[3] = {}, distort = 0, output = 0;
-  double compositor(int s) const { return reproject[s] + distort + output; }
+  PassTime gbuffer;
+  PassTime timewarp, rotationOnly;          // the compositor (gl/timewarp.h), one pass
+  PassTime gridReproject, distort, output;  // the reference chain it replaced
+  PassTime chain() const { return gridReproject + distort + output; }
 };
 
 // Mean of 'repeats' runs after one warm-up (llvmpipe compiles shader variants on first use).
 template <typename F>
-double meanMs(int repeats, F&& pass) {
+PassTime meanMs(int repeats, F&& pass) {
   pass();
   gl::waitForGpu();
-  double sum = 0.0;
+  PassTime sum;
   for (int i = 0; i < repeats; ++i) {
     const auto t0 = Clock::now();
+    const double c0 = processCpuMs();
     pass();
     gl::waitForGpu();
-    sum += msSince(t0);
+    sum = sum + PassTime{msSince(t0), processCpuMs() - c0};
   }
-  return sum / repeats;
+  return {sum.wall / repeats, sum.cpu / repeats};
+}
+
+// The head turned only (no parallax): the timewarp's cheapest case, one depth fetch.
+std::array<EyeCamera, 2> turnedEyes(const Scene& s, int w, int h) {
+  Pose p = poseOf(s.cameras.at(0));
+  p.orientation =
+      glm::normalize(p.orientation * glm::angleAxis(glm::radians(1.5f), glm::vec3(0, 1, 0)));
+  return app::headEyes(p, w, h, glm::vec2(0.0f));
 }
 
 Timing timeScene(const std::string& name, const Config& c, bool layered) {
@@ -80,22 +98,25 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
   app::HeadsetCompositor comp(c.eyeW, c.eyeH, c.panelW, c.panelH, 90);
   const auto from = sceneEyes(scene, c.eyeW, c.eyeH, glm::vec2(0.0f));
   const auto to = movedEyes(scene, c.eyeW, c.eyeH);
+  const auto turned = turnedEyes(scene, c.eyeW, c.eyeH);
   std::array<glm::mat4, 2> vp;
   for (int e = 0; e < 2; ++e) vp[e] = from[e].unjitteredProjection() * from[e].view();
   Timing t;
   t.scene = name;
   t.gbuffer = meanMs(c.repeats, [&] { pass.render(gpu, from, vp); });
   // The G-buffer's own layers stand in for a rendered frame: base colour as colour and
-  // its D32F depth (the passes' cost does not depend on the values).
+  // its D32F depth (the scene's real depth: the search's cost depends on its parallax).
   const unsigned color = pass.texture(gl::GBufferTarget::BaseColor), depth = pass.depthTexture();
-  for (int k = 0; k < 3; ++k) {
-    gl::ReprojectParams params;
-    params.gridStep = kSteps[k];
-    comp.reprojector().setParams(params);
-    t.reproject[k] = meanMs(c.repeats, [&] { comp.reprojector().run(color, depth, from, to); });
-  }
-  t.distort = meanMs(c.repeats, [&] { comp.distorter().run(comp.reprojector().colorTexture()); });
-  t.output = meanMs(c.repeats, [&] { comp.output().run(comp.distorter().panelTexture(), 1.0f); });
+  t.timewarp = meanMs(c.repeats, [&] { comp.run(color, depth, from, to, 1.0f); });
+  t.rotationOnly = meanMs(c.repeats, [&] { comp.run(color, depth, from, turned, 1.0f); });
+  // The reference chain: grid re-projection (step 2), distortion, panel output.
+  gl::ReprojectParams params;
+  params.gridStep = 2;
+  gl::Reprojector grid(c.eyeW, c.eyeH, params);
+  gl::Distorter distorter(app::dk2PanelLens(c.panelW, c.panelH), c.eyeW, c.eyeH, app::dk2EyeFov());
+  t.gridReproject = meanMs(c.repeats, [&] { grid.run(color, depth, from, to); });
+  t.distort = meanMs(c.repeats, [&] { distorter.run(grid.colorTexture()); });
+  t.output = meanMs(c.repeats, [&] { comp.output().run(distorter.panelTexture(), 1.0f); });
   return t;
 }
 
@@ -242,6 +263,8 @@ Config parse(int argc, char** argv) {
       c.trials = std::max(1, v);
     else if (a == "--sampling")
       c.samplingStudy = v != 0;
+    else if (a == "--scene")
+      c.scenes = {argv[i + 1]};
     else {
       std::fprintf(stderr, "photovr_bench_compositor: unknown option %s\n", a.c_str());
       std::exit(2);
@@ -266,26 +289,33 @@ int run(int argc, char** argv) {
   std::filesystem::create_directories(c.out);
   std::printf("bench_compositor: eyes %dx%d x 2, panel %dx%d (rotation 90), mean of %d; GL: %s\n",
               c.eyeW, c.eyeH, c.panelW, c.panelH, c.repeats, ctx->renderer().c_str());
-  std::printf("%-8s %9s | %-26s | %8s %8s | %-21s | %-21s\n", "", "", "reproject, grid step", "",
-              "", "compositor, step 1", "compositor, step 4");
-  std::printf("%-8s %9s | %8s %8s %8s | %8s %8s | %11s %9s | %11s %9s\n", "scene", "gbuffer", "1",
-              "2", "4", "distort", "output", "ms", "/gbuffer", "ms", "/gbuffer");
+  std::printf("%-8s %9s | %-31s | %-36s | %-17s\n", "", "", "compositor (timewarp, one pass)",
+              "reference chain (grid step 2)", "by CPU time");
+  std::printf("%-8s %9s | %9s %9s %11s | %8s %8s %8s %9s | %8s %8s\n", "scene", "gbuffer", "moved",
+              "turned", "/gbuffer", "reproj", "distort", "output", "/gbuffer", "fused", "chain");
   std::ofstream csv(c.out + "/bench_compositor.csv");
-  csv << "scene,eye_width,eye_height,panel_width,panel_height,gbuffer_ms,reproject_step1_ms,"
-         "reproject_step2_ms,reproject_step4_ms,distort_ms,output_ms,compositor_step1_ms,"
-         "compositor_step4_ms,step1_over_gbuffer,step4_over_gbuffer\n";
-  for (const std::string& name : builtinSceneNames()) {
+  csv << "scene,eye_width,eye_height,panel_width,panel_height,gbuffer_ms,timewarp_ms,"
+         "timewarp_rotation_only_ms,timewarp_over_gbuffer,grid_reproject_step2_ms,distort_ms,"
+         "output_ms,chain_over_gbuffer,gbuffer_cpu_ms,timewarp_cpu_ms,chain_cpu_ms,"
+         "timewarp_over_gbuffer_cpu,chain_over_gbuffer_cpu\n";
+  for (const std::string& name : c.scenes) {
     const Timing t = timeScene(name, c, layered);
-    const double r1 = t.compositor(0) / t.gbuffer, r4 = t.compositor(2) / t.gbuffer;
-    std::printf("%-8s %9.1f | %8.1f %8.1f %8.1f | %8.1f %8.1f | %11.1f %9.3f | %11.1f %9.3f\n",
-                name.c_str(), t.gbuffer, t.reproject[0], t.reproject[1], t.reproject[2], t.distort,
-                t.output, t.compositor(0), r1, t.compositor(2), r4);
+    const double fused = t.timewarp.wall / t.gbuffer.wall, chain = t.chain().wall / t.gbuffer.wall;
+    const double fusedCpu = t.timewarp.cpu / t.gbuffer.cpu,
+                 chainCpu = t.chain().cpu / t.gbuffer.cpu;
+    std::printf("%-8s %9.1f | %9.1f %9.1f %11.3f | %8.1f %8.1f %8.1f %9.3f | %8.3f %8.3f\n",
+                name.c_str(), t.gbuffer.wall, t.timewarp.wall, t.rotationOnly.wall, fused,
+                t.gridReproject.wall, t.distort.wall, t.output.wall, chain, fusedCpu, chainCpu);
     csv << name << ',' << c.eyeW << ',' << c.eyeH << ',' << c.panelW << ',' << c.panelH << ','
-        << t.gbuffer << ',' << t.reproject[0] << ',' << t.reproject[1] << ',' << t.reproject[2]
-        << ',' << t.distort << ',' << t.output << ',' << t.compositor(0) << ',' << t.compositor(2)
-        << ',' << r1 << ',' << r4 << '\n';
+        << t.gbuffer.wall << ',' << t.timewarp.wall << ',' << t.rotationOnly.wall << ',' << fused
+        << ',' << t.gridReproject.wall << ',' << t.distort.wall << ',' << t.output.wall << ','
+        << chain << ',' << t.gbuffer.cpu << ',' << t.timewarp.cpu << ',' << t.chain().cpu << ','
+        << fusedCpu << ',' << chainCpu << '\n';
   }
-  std::printf("(ms, mean of %d; target: compositor <= 0.25 x gbuffer)\n", c.repeats);
+  std::printf(
+      "(ms, mean of %d; moved: 1.5 deg yaw + 1 cm, turned: 1.5 deg yaw; target: "
+      "compositor <= 0.25 x gbuffer)\n",
+      c.repeats);
   std::ofstream mask(c.out + "/bench_compositor_mask.csv");
   mask << "eye,width,height,hidden_fraction\n";
   for (const MaskRow& m : hiddenFractions(c)) {

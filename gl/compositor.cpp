@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "gl/context.h"
 #include "gl/gl_api.h"
+#include "gl/textures.h"
 #include "shaders/compositor_shared.h"
 
 namespace photovr::gl {
@@ -12,41 +13,6 @@ namespace {
 
 static_assert(sizeof(shared::ReprojectUniforms) == 64 + 4 * 16, "std140 ReprojectUniforms");
 static_assert(sizeof(shared::DistortUniforms) == 8 * 16, "std140 DistortUniforms");
-
-GLuint makeArray(GLenum internal, int w, int h, int layers) {
-  GLuint t = 0;
-  api::CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
-  api::TextureStorage3D(t, 1, internal, w, h, layers);
-  api::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
-}
-
-GLuint make2D(GLenum internal, int w, int h) {
-  GLuint t = 0;
-  api::CreateTextures(GL_TEXTURE_2D, 1, &t);
-  api::TextureStorage2D(t, 1, internal, w, h);
-  api::TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api::TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
-}
-
-template <typename T>
-std::vector<T> readLayer(GLuint tex, GLenum format, GLenum type, int w, int h, int layer) {
-  api::MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-  api::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  std::vector<T> out(size_t(w) * h);
-  api::GetTextureSubImage(tex, 0, 0, 0, layer, w, h, 1, format, type,
-                          GLsizei(out.size() * sizeof(T)), out.data());
-  return out;
-}
-
-GLuint makeUniforms(size_t size) {
-  GLuint b = 0;
-  api::CreateBuffers(1, &b);
-  api::NamedBufferStorage(b, GLsizeiptr(size), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  return b;
-}
 
 void checkEyeCount(const char* what, int eyeCount) {
   if (eyeCount < 1 || eyeCount > 2)
@@ -66,13 +32,13 @@ Reprojector::Reprojector(int w, int h, const ReprojectParams& params)
           {{GL_VERTEX_SHADER, "reproject_vert.glsl"}, {GL_FRAGMENT_SHADER, "reproject_frag.glsl"}},
           {}) {
   if (w < 1 || h < 1) throw UsageError("reprojector: empty image");
-  inColor_ = makeArray(GL_RGBA32F, w, h, 2);
-  inDepth_ = makeArray(GL_R32F, w, h, 2);
-  color_ = makeArray(GL_RGBA16F, w, h, 2);
-  depth_ = makeArray(GL_DEPTH_COMPONENT32F, w, h, 2);
+  inColor_ = makeArrayTexture(GL_RGBA32F, w, h, 2);
+  inDepth_ = makeArrayTexture(GL_R32F, w, h, 2);
+  color_ = makeArrayTexture(GL_RGBA16F, w, h, 2);
+  depth_ = makeArrayTexture(GL_DEPTH_COMPONENT32F, w, h, 2);
   api::ClearTexImage(inColor_, 0, GL_RGBA, GL_FLOAT, nullptr);
   api::ClearTexImage(inDepth_, 0, GL_RED, GL_FLOAT, nullptr);
-  uniforms_ = makeUniforms(sizeof(shared::ReprojectUniforms));
+  uniforms_ = makeDynamicBuffer(sizeof(shared::ReprojectUniforms));
   api::CreateVertexArrays(1, &vao_);
   api::CreateFramebuffers(1, &fbo_);
 }
@@ -154,11 +120,11 @@ void Reprojector::run(unsigned colorArray, unsigned depthArray,
 }
 
 std::vector<glm::vec4> Reprojector::readColor(int eye) const {
-  return readLayer<glm::vec4>(color_, GL_RGBA, GL_FLOAT, width_, height_, eye);
+  return readTextureLayer<glm::vec4>(color_, GL_RGBA, GL_FLOAT, width_, height_, eye);
 }
 
 std::vector<float> Reprojector::readDepth(int eye) const {
-  return readLayer<float>(depth_, GL_DEPTH_COMPONENT, GL_FLOAT, width_, height_, eye);
+  return readTextureLayer<float>(depth_, GL_DEPTH_COMPONENT, GL_FLOAT, width_, height_, eye);
 }
 
 ReprojectStats Reprojector::stats(int eye) const {
@@ -177,6 +143,35 @@ ReprojectStats Reprojector::stats(int eye) const {
 // ---------------------------------------------------------------------------------------
 // Distortion
 
+glm::vec2 lensCentreOf(const LensParams& lens, int eye) {
+  // hmd/lens.cpp lensCentre: the lens sits lensSeparation / 2 from the panel centre.
+  const double x = 1.0 - 2.0 * double(lens.lensSeparationM) / lens.panelWidthM;
+  const double y = 2.0 * double(lens.verticalCentreM) / lens.panelHeightM - 1.0;
+  return {float(eye == 0 ? x : -x), float(y)};
+}
+
+glm::vec2 screenToLensScaleOf(const LensParams& lens) {
+  return {float(0.25 * lens.panelWidthM / lens.metresPerTanAngle),
+          float(0.5 * lens.panelHeightM / lens.metresPerTanAngle)};
+}
+
+shared::DistortUniforms distortUniforms(const LensParams& lens, int eye, const FovTangents& fov,
+                                        int eyeWidth, int eyeHeight, bool footprint) {
+  shared::DistortUniforms u{};
+  const auto& k = lens.k;
+  u.k0 = {k[0], k[1], k[2], k[3]};
+  u.k1 = {k[4], k[5], k[6], k[7]};
+  u.k2 = {k[8], k[9], k[10], lens.maxR};
+  u.chroma = {lens.chroma[0], lens.chroma[1], lens.chroma[2], lens.chroma[3]};
+  const glm::vec2 c = lensCentreOf(lens, eye), s = screenToLensScaleOf(lens);
+  u.lens = {c.x, c.y, s.x, s.y};
+  u.fov = {fov.left, fov.right, fov.up, fov.down};
+  const int halfW = lens.hResolution / 2;
+  u.panel = {halfW, lens.vResolution, eye * halfW, eye};
+  u.eyeSize = {eyeWidth, eyeHeight, footprint ? 1 : 0, 0};
+  return u;
+}
+
 Distorter::Distorter(const LensParams& lens, int eyeWidth, int eyeHeight,
                      const std::array<FovTangents, 2>& eyeFov)
     : lens_(lens),
@@ -187,20 +182,16 @@ Distorter::Distorter(const LensParams& lens, int eyeWidth, int eyeHeight,
   if (lens.hResolution < 2 || lens.hResolution % 2 || lens.vResolution < 1)
     throw UsageError("distorter: the panel needs an even width and a height");
   if (eyeWidth < 1 || eyeHeight < 1) throw UsageError("distorter: empty eye buffer");
-  panel_ = make2D(GL_RGBA16F, lens.hResolution, lens.vResolution);
-  tanRG_ = make2D(GL_RGBA32F, lens.hResolution, lens.vResolution);
-  tanB_ = make2D(GL_RGBA32F, lens.hResolution, lens.vResolution);
-  footprint_ = makeArray(GL_R32UI, eyeWidth, eyeHeight, 2);
+  panel_ = makeTexture2D(GL_RGBA16F, lens.hResolution, lens.vResolution);
+  tanRG_ = makeTexture2D(GL_RGBA32F, lens.hResolution, lens.vResolution);
+  tanB_ = makeTexture2D(GL_RGBA32F, lens.hResolution, lens.vResolution);
+  footprint_ = makeArrayTexture(GL_R32UI, eyeWidth, eyeHeight, 2);
   api::ClearTexImage(panel_, 0, GL_RGBA, GL_FLOAT, nullptr);
   api::ClearTexImage(footprint_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-  uniforms_ = makeUniforms(sizeof(shared::DistortUniforms));
+  uniforms_ = makeDynamicBuffer(sizeof(shared::DistortUniforms));
   // Bilinear with clamp-to-edge, as the debug path's explicit taps (whatever filter the
   // eye array itself carries: the denoiser's and the re-projector's are GL_NEAREST).
-  api::CreateSamplers(1, &linearSampler_);
-  api::SamplerParameteri(linearSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  api::SamplerParameteri(linearSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  api::SamplerParameteri(linearSampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  api::SamplerParameteri(linearSampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  linearSampler_ = makeLinearSampler();
 }
 
 Distorter::~Distorter() {
@@ -211,15 +202,11 @@ Distorter::~Distorter() {
 }
 
 glm::vec2 Distorter::lensCentre(int eye) const {
-  // hmd/lens.cpp lensCentre: the lens sits lensSeparation / 2 from the panel centre.
-  const double x = 1.0 - 2.0 * double(lens_.lensSeparationM) / lens_.panelWidthM;
-  const double y = 2.0 * double(lens_.verticalCentreM) / lens_.panelHeightM - 1.0;
-  return {float(eye == 0 ? x : -x), float(y)};
+  return lensCentreOf(lens_, eye);
 }
 
 glm::vec2 Distorter::screenToLensScale() const {
-  return {float(0.25 * lens_.panelWidthM / lens_.metresPerTanAngle),
-          float(0.5 * lens_.panelHeightM / lens_.metresPerTanAngle)};
+  return screenToLensScaleOf(lens_);
 }
 
 void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {
@@ -234,17 +221,8 @@ void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {
   api::BindImageTexture(COMP_I_TAN_B, tanB_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   api::BindImageTexture(COMP_I_FOOTPRINT, footprint_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
   for (int e = 0; e < eyeCount; ++e) {
-    shared::DistortUniforms u{};
-    const auto& k = lens_.k;
-    u.k0 = {k[0], k[1], k[2], k[3]};
-    u.k1 = {k[4], k[5], k[6], k[7]};
-    u.k2 = {k[8], k[9], k[10], lens_.maxR};
-    u.chroma = {lens_.chroma[0], lens_.chroma[1], lens_.chroma[2], lens_.chroma[3]};
-    const glm::vec2 c = lensCentre(e), s = screenToLensScale();
-    u.lens = {c.x, c.y, s.x, s.y};
-    u.fov = {fov_[e].left, fov_[e].right, fov_[e].up, fov_[e].down};
-    u.panel = {halfW, h, e * halfW, e};
-    u.eyeSize = {eyeWidth_, eyeHeight_, footprint ? 1 : 0, 0};
+    const shared::DistortUniforms u =
+        distortUniforms(lens_, e, fov_[e], eyeWidth_, eyeHeight_, footprint);
     api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);
     api::BindBufferBase(GL_UNIFORM_BUFFER, COMP_DISTORT_BINDING, uniforms_);
     api::DispatchCompute(GLuint((halfW + COMP_GROUP - 1) / COMP_GROUP),
@@ -256,14 +234,15 @@ void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {
 }
 
 std::vector<glm::vec4> Distorter::readPanel() const {
-  return readLayer<glm::vec4>(panel_, GL_RGBA, GL_FLOAT, lens_.hResolution, lens_.vResolution, 0);
+  return readTextureLayer<glm::vec4>(panel_, GL_RGBA, GL_FLOAT, lens_.hResolution,
+                                     lens_.vResolution, 0);
 }
 
 std::vector<DistortSample> Distorter::readSamples() const {
-  const auto rg =
-      readLayer<glm::vec4>(tanRG_, GL_RGBA, GL_FLOAT, lens_.hResolution, lens_.vResolution, 0);
-  const auto b =
-      readLayer<glm::vec4>(tanB_, GL_RGBA, GL_FLOAT, lens_.hResolution, lens_.vResolution, 0);
+  const auto rg = readTextureLayer<glm::vec4>(tanRG_, GL_RGBA, GL_FLOAT, lens_.hResolution,
+                                              lens_.vResolution, 0);
+  const auto b = readTextureLayer<glm::vec4>(tanB_, GL_RGBA, GL_FLOAT, lens_.hResolution,
+                                             lens_.vResolution, 0);
   std::vector<DistortSample> out(rg.size());
   for (size_t i = 0; i < rg.size(); ++i)
     out[i] = {{glm::vec2(rg[i].x, rg[i].y), glm::vec2(rg[i].z, rg[i].w), glm::vec2(b[i].x, b[i].y)},
@@ -272,8 +251,8 @@ std::vector<DistortSample> Distorter::readSamples() const {
 }
 
 std::vector<uint8_t> Distorter::readFootprint(int eye) const {
-  const auto v =
-      readLayer<uint32_t>(footprint_, GL_RED_INTEGER, GL_UNSIGNED_INT, eyeWidth_, eyeHeight_, eye);
+  const auto v = readTextureLayer<uint32_t>(footprint_, GL_RED_INTEGER, GL_UNSIGNED_INT, eyeWidth_,
+                                            eyeHeight_, eye);
   std::vector<uint8_t> out(v.size());
   for (size_t i = 0; i < v.size(); ++i) out[i] = v[i] ? 1 : 0;
   return out;

@@ -2,6 +2,11 @@
 // rendered colour + depth to a newer pose, and the DK2 lens distortion pass with chromatic
 // correction. Both eyes live in 2-layer array textures, layer = eye.
 //
+// The headset itself runs gl/timewarp.h, which does both (and the panel output) in one
+// pass. These are the reference implementation it is tested against and the bench's
+// baseline: the forward warp is exact where the search is approximate, and the Distorter's
+// debug run records the footprint the hidden-area mask is checked with.
+//
 // Re-projection (Reprojector) is a forward warp of a depth-displaced grid mesh (dk2.md §7):
 // one vertex per pose-A pixel sample (plus a border ring), z-buffered (reversed-Z, GL_GEQUAL)
 // and rasterised at pose B; each fragment takes A's colour bilinearly at its interpolated A
@@ -113,6 +118,19 @@ LensParams lensParamsOf(const LensModel& m) {
   p.vResolution = m.panel.vResolution;
   return p;
 }
+
+namespace shared {
+struct DistortUniforms;
+}
+
+// Lens centre of an eye's half in screen NDC and the screen-to-lens scale, as
+// hmd::lensCentre / hmd::screenToLensScale compute them.
+glm::vec2 lensCentreOf(const LensParams& lens, int eye);
+glm::vec2 screenToLensScaleOf(const LensParams& lens);
+// The distortion shaders' uniforms for one eye (shaders/compositor_shared.h); 'footprint'
+// asks distort.comp for its debug outputs.
+shared::DistortUniforms distortUniforms(const LensParams& lens, int eye, const FovTangents& fov,
+                                        int eyeWidth, int eyeHeight, bool footprint);
 
 // One panel pixel's debug record: the tan-angle each channel samples, and whether the
 // lens sees the pixel.

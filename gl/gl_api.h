@@ -48,6 +48,8 @@
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                               \
   X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                     \
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                     \
+  X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)               \
+  X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)                 \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                             \
   X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                           \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                                     \

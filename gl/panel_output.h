@@ -60,6 +60,8 @@ class PanelOutput {
   int width() const { return size_.x; }         // output (rotated) size
   int height() const { return size_.y; }
   int rotation() const { return rotation_; }
+  int panelWidth() const { return panelWidth_; }  // input (landscape) size
+  int panelHeight() const { return panelHeight_; }
   std::vector<glm::u8vec4> read() const;  // rows bottom-up
 
   // Scales the output into the window's default framebuffer, aspect kept (black bars).

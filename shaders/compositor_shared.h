@@ -1,6 +1,7 @@
 // Parameters and bindings shared by C++ (gl/compositor.cpp) and the compositor shaders
-// (reproject.vert/.frag, distort.comp): one definition compiled by both. Only vec4/ivec4/mat4
-// members, so the std140 layout equals the C++ layout; gl/compositor.cpp static_asserts it.
+// (reproject_*.glsl, distort.comp, timewarp*.comp): one definition compiled by both. Only
+// vec4/ivec4/mat4 members, so the std140 layout equals the C++ layout; gl/compositor.cpp
+// static_asserts it.
 #ifndef PHOTOVR_COMPOSITOR_SHARED_H
 #define PHOTOVR_COMPOSITOR_SHARED_H
 
@@ -52,6 +53,35 @@ struct DistortUniforms {
   vec4 fov;       // the eye buffer's tangents: left, right, up, down
   ivec4 panel;    // eye half width, height of the panel; x offset of this eye's half; eye
   ivec4 eyeSize;  // eye buffer width, height, 1 = write footprint, -
+};
+
+// Timewarp (timewarp*.comp, gl/timewarp.h): bindings.
+#define COMP_TW_BINDING 9  // TimewarpUniforms
+#define COMP_TW_STATS 10   // SSBO: per eye reprojected, filled, uncovered (uint x 4 x 2)
+#define COMP_TW_COLOR 0    // A's colour (2-layer array, bilinear sampler)
+#define COMP_TW_DEPTH 1    // A's reversed-Z depth (2-layer array)
+#define COMP_TW_TILES 2    // dilated tile maxima of A's depth (2-layer array)
+#define COMP_TW_LUT 3      // per panel pixel: green tan-angle (xy), red, blue scale (zw)
+#define COMP_TW_I_OUT 0    // panel mode: RGBA8 output; eye mode: RGBA16F 2-layer colour
+#define COMP_TW_I_DEPTH 1  // eye mode: R32F 2-layer depth at pose B
+#define COMP_TW_I_TILES 2  // tile passes: the image written
+#define COMP_TW_TILE 16    // tile edge (pixels) of the search bound
+#define COMP_TW_GROUP 8
+
+// One eye of the timewarp: pose B's eye space to pose A's, both cameras' tangents.
+struct TimewarpEye {
+  mat4 bToA;    // view_A * inverse(view_B): rotation (3x3) and B's origin in A (column 3)
+  vec4 aFov;    // A's tangents: left, right, up, down
+  vec4 aPixel;  // A's jitter (xy), A's znear (z), B's znear (w)
+  vec4 bFov;    // B's tangents (eye mode: B's pixel -> tan-angle)
+  vec4 bPixel;  // B's jitter (xy, eye mode), the largest usable 1/distance in A (z), -
+};
+
+struct TimewarpUniforms {
+  TimewarpEye eye[2];
+  vec4 params;  // depth ratio threshold, march step (pixels), max steps, exposure
+  ivec4 size;   // eye width, height; panel width, height (landscape, both halves)
+  ivec4 mode;   // 0 eye buffers / 1 panel; panel rotation (degrees); tiles x, y
 };
 
 #ifdef __cplusplus

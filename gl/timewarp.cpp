@@ -1,0 +1,188 @@
+#include "gl/timewarp.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "gl/gl_api.h"
+#include "gl/textures.h"
+#include "shaders/compositor_shared.h"
+
+namespace photovr::gl {
+namespace {
+
+static_assert(sizeof(shared::TimewarpEye) == 64 + 4 * 16, "std140 TimewarpEye");
+static_assert(sizeof(shared::TimewarpUniforms) == 2 * sizeof(shared::TimewarpEye) + 3 * 16,
+              "std140 TimewarpUniforms");
+
+GLuint groups(int n, int group) {
+  return GLuint((n + group - 1) / group);
+}
+
+// 1 / A-distance beyond which a point lies behind B's eye plane (B's origin c, in A's eye
+// space, in front of A by -c.z): the search never looks past it.
+float largestUsableRho(float cz) {
+  return cz < 0.0f ? 0.999f / -cz : std::numeric_limits<float>::max();
+}
+
+shared::TimewarpEye eyeUniforms(const EyeCamera& a, const EyeCamera& b) {
+  shared::TimewarpEye w{};
+  w.bToA = a.view() * b.pose.toWorld();
+  w.aFov = {a.fov.left, a.fov.right, a.fov.up, a.fov.down};
+  w.aPixel = {a.jitter.x, a.jitter.y, a.znear, b.znear};
+  w.bFov = {b.fov.left, b.fov.right, b.fov.up, b.fov.down};
+  w.bPixel = {b.jitter.x, b.jitter.y, largestUsableRho(w.bToA[3].z), 0.0f};
+  return w;
+}
+
+}  // namespace
+
+Timewarp::Timewarp(const LensParams& lens, int eyeWidth, int eyeHeight,
+                   const std::array<FovTangents, 2>& eyeFov, const TimewarpParams& params)
+    : eyeWidth_(eyeWidth),
+      eyeHeight_(eyeHeight),
+      panelWidth_(lens.hResolution),
+      panelHeight_(lens.vResolution),
+      tiles_((eyeWidth + COMP_TW_TILE - 1) / COMP_TW_TILE,
+             (eyeHeight + COMP_TW_TILE - 1) / COMP_TW_TILE),
+      params_(params),
+      panelProgram_({{GL_COMPUTE_SHADER, "timewarp.comp"}}, {"TIMEWARP_PANEL"}),
+      eyeProgram_({{GL_COMPUTE_SHADER, "timewarp.comp"}}, {}),
+      tileProgram_({{GL_COMPUTE_SHADER, "timewarp_tiles.comp"}}, {}) {
+  if (eyeWidth < 1 || eyeHeight < 1) throw UsageError("timewarp: empty eye buffer");
+  if (lens.hResolution < 2 || lens.hResolution % 2 || lens.vResolution < 1)
+    throw UsageError("timewarp: the panel needs an even width and a height");
+  uniforms_ = makeDynamicBuffer(sizeof(shared::TimewarpUniforms));
+  stats_ = makeDynamicBuffer(8 * sizeof(uint32_t));
+  linearSampler_ = makeLinearSampler();
+  tileMax_ = makeArrayTexture(GL_R32F, tiles_.x, tiles_.y, 2);
+  tileBound_ = makeArrayTexture(GL_R32F, tiles_.x, tiles_.y, 2);
+  eyeColor_ = makeArrayTexture(GL_RGBA16F, eyeWidth, eyeHeight, 2);
+  eyeDepth_ = makeArrayTexture(GL_R32F, eyeWidth, eyeHeight, 2);
+  buildLensTable(lens, eyeFov);
+}
+
+Timewarp::~Timewarp() {
+  const GLuint t[] = {lensTable_, tileMax_, tileBound_, eyeColor_, eyeDepth_};
+  api::DeleteTextures(5, t);
+  const GLuint b[] = {uniforms_, stats_};
+  api::DeleteBuffers(2, b);
+  api::DeleteSamplers(1, &linearSampler_);
+}
+
+void Timewarp::buildLensTable(const LensParams& lens, const std::array<FovTangents, 2>& eyeFov) {
+  lensTable_ = makeTexture2D(GL_RGBA32F, panelWidth_, panelHeight_);
+  const Program lut({{GL_COMPUTE_SHADER, "timewarp_lut.comp"}}, {});
+  const GLuint buffer = makeDynamicBuffer(sizeof(shared::DistortUniforms));
+  lut.use();
+  api::BindImageTexture(COMP_TW_I_OUT, lensTable_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  for (int e = 0; e < 2; ++e) {
+    const shared::DistortUniforms u =
+        distortUniforms(lens, e, eyeFov[e], eyeWidth_, eyeHeight_, false);
+    api::NamedBufferSubData(buffer, 0, sizeof(u), &u);
+    api::BindBufferBase(GL_UNIFORM_BUFFER, COMP_DISTORT_BINDING, buffer);
+    api::DispatchCompute(groups(panelWidth_ / 2, COMP_GROUP), groups(panelHeight_, COMP_GROUP), 1);
+  }
+  api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  api::DeleteBuffers(1, &buffer);
+}
+
+void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
+                       const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                       int eyeCount, float exposure, int rotation) {
+  if (eyeCount < 1 || eyeCount > 2) throw UsageError("timewarp: eye count must be 1 or 2");
+  for (int e = 0; e < eyeCount; ++e) {
+    if (from[e].width != eyeWidth_ || from[e].height != eyeHeight_ || to[e].width != eyeWidth_ ||
+        to[e].height != eyeHeight_)
+      throw UsageError("timewarp: cameras of eye " + std::to_string(e) + " are not " +
+                       std::to_string(eyeWidth_) + "x" + std::to_string(eyeHeight_));
+    if (from[e].zfar != 0.0f) throw UsageError("timewarp: pose A needs infinite reversed-Z");
+  }
+  if (!(params_.stepPixels > 0.0f) || params_.maxSteps < 1 || params_.maxSteps > 1024)
+    throw UsageError("timewarp: step must be positive and max steps in [1, 1024]");
+  shared::TimewarpUniforms u{};
+  for (int e = 0; e < eyeCount; ++e) u.eye[e] = eyeUniforms(from[e], to[e]);
+  u.params = {params_.depthRatio, params_.stepPixels, float(params_.maxSteps), exposure};
+  u.size = {eyeWidth_, eyeHeight_, panelWidth_, panelHeight_};
+  u.mode = {0, rotation, tiles_.x, tiles_.y};
+  api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);
+  api::BindBufferBase(GL_UNIFORM_BUFFER, COMP_TW_BINDING, uniforms_);
+  const GLuint zero = 0;
+  api::ClearNamedBufferData(stats_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_STATS, stats_);
+
+  // The search bound: tile maxima of A's depth, then their 3x3 maxima.
+  tileProgram_.use();
+  api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // clamp to edge for the tiles' gathers
+  const GLuint tileSources[2] = {depthArray, tileMax_}, tileTargets[2] = {tileMax_, tileBound_};
+  for (int pass = 0; pass < 2; ++pass) {
+    tileProgram_.set("uPass", pass);
+    api::BindTextureUnit(COMP_TW_DEPTH, tileSources[pass]);
+    api::BindImageTexture(COMP_TW_I_TILES, tileTargets[pass], 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                          GL_R32F);
+    api::DispatchCompute(groups(tiles_.x, COMP_TW_GROUP), groups(tiles_.y, COMP_TW_GROUP),
+                         GLuint(eyeCount));
+    api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  api::BindTextureUnit(COMP_TW_COLOR, colorArray);
+  api::BindSampler(COMP_TW_COLOR, linearSampler_);
+  api::BindTextureUnit(COMP_TW_DEPTH, depthArray);
+  api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // for textureGather's clamp to edge
+  api::BindTextureUnit(COMP_TW_TILES, tileBound_);
+}
+
+void Timewarp::unbindSamplers() {
+  api::BindSampler(COMP_TW_COLOR, 0);
+  api::BindSampler(COMP_TW_DEPTH, 0);
+}
+
+void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
+                        const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                        float exposure, PanelOutput& out) {
+  if (out.panelWidth() != panelWidth_ || out.panelHeight() != panelHeight_)
+    throw UsageError("timewarp: the panel output is not " + std::to_string(panelWidth_) + "x" +
+                     std::to_string(panelHeight_));
+  prepare(colorArray, depthArray, from, to, 2, exposure, out.rotation());
+  panelProgram_.use();
+  api::BindTextureUnit(COMP_TW_LUT, lensTable_);
+  api::BindImageTexture(COMP_TW_I_OUT, out.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  api::DispatchCompute(groups(out.width(), COMP_TW_GROUP), groups(out.height(), COMP_TW_GROUP), 1);
+  api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                     GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                     GL_BUFFER_UPDATE_BARRIER_BIT);
+  unbindSamplers();
+}
+
+void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
+                       const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                       int eyeCount) {
+  prepare(colorArray, depthArray, from, to, eyeCount, 1.0f, 0);
+  eyeProgram_.use();
+  api::BindImageTexture(COMP_TW_I_OUT, eyeColor_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  api::BindImageTexture(COMP_TW_I_DEPTH, eyeDepth_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  api::DispatchCompute(groups(eyeWidth_, COMP_TW_GROUP), groups(eyeHeight_, COMP_TW_GROUP),
+                       GLuint(eyeCount));
+  api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  unbindSamplers();
+}
+
+std::vector<glm::vec4> Timewarp::readColor(int eye) const {
+  return readTextureLayer<glm::vec4>(eyeColor_, GL_RGBA, GL_FLOAT, eyeWidth_, eyeHeight_, eye);
+}
+
+std::vector<float> Timewarp::readDepth(int eye) const {
+  return readTextureLayer<float>(eyeDepth_, GL_RED, GL_FLOAT, eyeWidth_, eyeHeight_, eye);
+}
+
+ReprojectStats Timewarp::stats(int eye) const {
+  if (eye < 0 || eye > 1) throw UsageError("timewarp: eye must be 0 or 1");
+  api::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  uint32_t counts[8] = {};
+  api::GetNamedBufferSubData(stats_, 0, sizeof counts, counts);
+  const uint32_t* c = counts + 4 * eye;  // uncovered, filled, reprojected (timewarp.comp)
+  return {int(c[2]), int(c[1]), int(c[0])};
+}
+
+}  // namespace photovr::gl
