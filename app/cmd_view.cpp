@@ -252,6 +252,9 @@ struct Session {
   void accept(FinishedFrame f) {
     const auto mode = gl::DenoiseMode(c.denoise);
     const auto t0 = Clock::now();
+    // A frame of the other renderer starts a new history, so that what is shown after a
+    // switch is that renderer's alone (the frame in flight at the switch is the old mode's).
+    if (shown && f.settings.pathTraced != shown->settings.pathTraced) resetHistory = true;
     if (mode != gl::DenoiseMode::Off) {
       const DenoiseInput l = makeDenoiseInput(f.images[0]), r = makeDenoiseInput(f.images[1]);
       denoiser->run(renderer->gbuffer(), {l.eye, r.eye}, 2, mode, resetHistory);
@@ -306,7 +309,6 @@ int runSession(ViewConfig& c) {
   auto last = Clock::now();
   int shownFrames = 0;
   uint32_t started = 0;
-  FrameSettings previous = c.settings;
   while (!s.context->shouldClose()) {
     const gl::WindowInput in = input.poll();
     if (in.quitPressed) break;
@@ -317,8 +319,6 @@ int runSession(ViewConfig& c) {
       s.head.desktop->handle(desktopInput(in, float(dt * 1e-3)));
     if (auto f = s.renderer->take()) s.accept(std::move(*f));
     if (!s.renderer->busy()) {
-      if (c.settings.pathTraced != previous.pathTraced) s.resetHistory = true;
-      previous = c.settings;
       s.renderer->start(
           headEyes(s.headPose(s.head.now()), c.width, c.height, haltonJitter(started++)),
           c.settings);
