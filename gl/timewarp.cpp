@@ -56,15 +56,15 @@ Timewarp::Timewarp(const LensParams& lens, int eyeWidth, int eyeHeight,
   uniforms_ = makeDynamicBuffer(sizeof(shared::TimewarpUniforms));
   stats_ = makeDynamicBuffer(8 * sizeof(uint32_t));
   linearSampler_ = makeLinearSampler();
-  tileMax_ = makeArrayTexture(GL_R32F, tiles_.x, tiles_.y, 2);
-  tileBound_ = makeArrayTexture(GL_R32F, tiles_.x, tiles_.y, 2);
+  tileRange_ = makeArrayTexture(GL_RG32F, tiles_.x, tiles_.y, 2);
+  tileBound_ = makeArrayTexture(GL_RG32F, tiles_.x, tiles_.y, 2);
   eyeColor_ = makeArrayTexture(GL_RGBA16F, eyeWidth, eyeHeight, 2);
   eyeDepth_ = makeArrayTexture(GL_R32F, eyeWidth, eyeHeight, 2);
   buildLensTable(lens, eyeFov);
 }
 
 Timewarp::~Timewarp() {
-  const GLuint t[] = {lensTable_, tileMax_, tileBound_, eyeColor_, eyeDepth_};
+  const GLuint t[] = {lensTable_, tileRange_, tileBound_, eyeColor_, eyeDepth_};
   api::DeleteTextures(5, t);
   const GLuint b[] = {uniforms_, stats_};
   api::DeleteBuffers(2, b);
@@ -112,15 +112,15 @@ void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
   api::ClearNamedBufferData(stats_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_STATS, stats_);
 
-  // The search bound: tile maxima of A's depth, then their 3x3 maxima.
+  // The search bounds: tile minima and maxima of A's depth, then their 3x3 extremes.
   tileProgram_.use();
   api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // clamp to edge for the tiles' gathers
-  const GLuint tileSources[2] = {depthArray, tileMax_}, tileTargets[2] = {tileMax_, tileBound_};
+  const GLuint tileSources[2] = {depthArray, tileRange_}, tileTargets[2] = {tileRange_, tileBound_};
   for (int pass = 0; pass < 2; ++pass) {
     tileProgram_.set("uPass", pass);
     api::BindTextureUnit(COMP_TW_DEPTH, tileSources[pass]);
     api::BindImageTexture(COMP_TW_I_TILES, tileTargets[pass], 0, GL_TRUE, 0, GL_WRITE_ONLY,
-                          GL_R32F);
+                          GL_RG32F);
     api::DispatchCompute(groups(tiles_.x, COMP_TW_GROUP), groups(tiles_.y, COMP_TW_GROUP),
                          GLuint(eyeCount));
     api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

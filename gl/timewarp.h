@@ -11,10 +11,10 @@
 // shows are warped. Per pixel it costs one depth fetch under pure rotation and one per
 // march step (params.stepPixels) of parallax.
 //
-// Limits: the search is bounded by the nearest depth within one 16-pixel tile of the
-// rotation-only point; parallax beyond ~16 pixels per refresh (a head moving ~4 cm past a
-// surface 0.5 m away at a DK2 eye buffer) can miss a near surface's edge. The eye mode
-// (runEyes) writes pose B's eye buffers for tests and eye images.
+// Limits: the search runs between the nearest and farthest depth within one 16-pixel tile
+// of the rotation-only point (and on to infinity); parallax beyond ~16 pixels per refresh (a head
+// moving ~4 cm past a surface 0.5 m away at a DK2 eye buffer) can miss a near surface's edge. The
+// eye mode (runEyes) writes pose B's eye buffers for tests and eye images.
 #pragma once
 
 #include <array>
@@ -74,7 +74,7 @@ class Timewarp {
   TimewarpParams params_;
   Program panelProgram_, eyeProgram_, tileProgram_;
   unsigned uniforms_ = 0, stats_ = 0, linearSampler_ = 0;
-  unsigned lensTable_ = 0, tileMax_ = 0, tileBound_ = 0, eyeColor_ = 0, eyeDepth_ = 0;
+  unsigned lensTable_ = 0, tileRange_ = 0, tileBound_ = 0, eyeColor_ = 0, eyeDepth_ = 0;
 };
 
 }  // namespace photovr::gl

@@ -13,8 +13,9 @@
 // rotation-only warp and e = c.xy + c.z r for B's origin c in A's eye space (R, c from
 // view_A * inverse(view_B)). So the ray is a segment in A's image, from r (rho = 0) towards
 // the near end, and the visible point is the largest rho at which A's depth buffer reaches
-// the ray: rho = D(r + rho e). Marched from the near end (the largest depth of the 3x3
-// tiles around r, timewarp_tiles.comp) in steps of params.y pixels, then refined by the
+// the ray: rho = D(r + rho e). Marched from the nearest to the farthest depth of the 3x3
+// tiles around r (timewarp_tiles.comp; on to infinity if the ray left them before
+// crossing) in steps of params.y pixels, then refined by the
 // secant between the last sample in front and the first behind, and one fixed-point step.
 // A crossing where A's depth jumps nearer by more than the ratio threshold passed behind a
 // silhouette: a disocclusion, filled with the background texel in front of which the ray
@@ -39,9 +40,10 @@ layout(r32f, binding = COMP_TW_I_DEPTH) writeonly uniform image2DArray depthOut;
 const int kUncovered = 0, kFilled = 1, kReprojected = 2;
 
 struct Warp {
-  vec2 px;     // A pixel coordinate (texel centres at +0.5)
-  float rho;   // 1 / A view distance of the point shown
-  int origin;  // kUncovered, kFilled, kReprojected
+  vec2 px;      // A pixel coordinate (texel centres at +0.5)
+  float rho;    // 1 / A view distance of the point shown
+  int origin;   // kUncovered, kFilled, kReprojected
+  bool continuous;  // no depth edge within a tile of it: every bilinear tap is on its surface
 };
 
 vec2 pixelsPerTan(TimewarpEye w) {
@@ -67,20 +69,23 @@ float rhoAt(vec2 px, int e) {
 
 Warp warpToA(int e, vec2 tanB, out float qz) {
   TimewarpEye w = u.eye[e];
-  Warp result = Warp(vec2(0.0), 0.0, kUncovered);
+  Warp result = Warp(vec2(0.0), 0.0, kUncovered, false);
   vec2 p0 = pixelAtInfinity(w, tanB, qz);
   if (qz > -1e-6) return result;
   vec3 c = w.bToA[3].xyz;
   vec2 rot = (p0 + w.aPixel.xy) / pixelsPerTan(w) - w.aFov.xw;
   vec2 dp = (c.xy + c.z * rot) * pixelsPerTan(w);  // pixels per unit of rho
   ivec2 tile = clamp(ivec2(floor(p0)) / COMP_TW_TILE, ivec2(0), u.mode.zw - 1);
-  float rhoHi = min(texelFetch(tiles, ivec3(tile, e), 0).r / w.aPixel.z, w.bPixel.z);
-  int n = clamp(int(ceil(rhoHi * length(dp) / u.params.y)), 1, int(u.params.z));
+  vec2 bounds = min(texelFetch(tiles, ivec3(tile, e), 0).rg / w.aPixel.z, w.bPixel.z);
+  float rhoLo = bounds.x, rhoHi = bounds.y;
+  int n = clamp(int(ceil((rhoHi - rhoLo) * length(dp) / u.params.y)), 1, int(u.params.z));
   float rhoA = rhoHi, dA = rhoAt(p0 + rhoHi * dp, e);  // last sample in front of A's surface
   float rhoB = rhoA, dB = dA;                          // first sample behind it
   if (rhoA > dA) {
-    for (int i = 1; i <= n; ++i) {  // ends at rho = 0, behind everything (D >= 0)
-      rhoB = rhoHi * float(n - i) / float(n);
+    // Between the neighbourhood's nearest and farthest depth; at rho = 0 (behind
+    // everything, D >= 0) if the segment left the neighbourhood before crossing.
+    for (int i = 1; i <= n + 1; ++i) {
+      rhoB = i <= n ? mix(rhoHi, rhoLo, float(i) / float(n)) : 0.0;
       dB = rhoAt(p0 + rhoB * dp, e);
       if (rhoB <= dB) break;
       rhoA = rhoB, dA = dB;
@@ -88,7 +93,7 @@ Warp warpToA(int e, vec2 tanB, out float qz) {
   }
   float rho;
   if (rhoA > dA && dB > dA * (1.0 + u.params.x)) {
-    result = Warp(floor(p0 + rhoA * dp) + 0.5, dA, kFilled);
+    result = Warp(floor(p0 + rhoA * dp) + 0.5, dA, kFilled, false);
   } else {
     float fa = rhoA - dA, fb = rhoB - dB;
     rho = fa > fb ? mix(rhoA, rhoB, fa / (fa - fb)) : dB;
@@ -97,7 +102,7 @@ Warp warpToA(int e, vec2 tanB, out float qz) {
       if (abs(d - rho) > rho * u.params.x) break;
       rho = d;
     }
-    result = Warp(p0 + rho * dp, rho, kReprojected);
+    result = Warp(p0 + rho * dp, rho, kReprojected, rhoHi <= rhoLo * (1.0 + u.params.x));
   }
   if (any(lessThan(result.px, vec2(0.0))) || any(greaterThan(result.px, vec2(u.size.xy))))
     result.origin = kUncovered;
@@ -188,8 +193,9 @@ void main() {
       vec2 parallax = g.px - pixelAtInfinity(w, tG, qz);
       vec2 pR = pixelAtInfinity(w, clampToEyeBuffer(w, lens.xy * lens.z), qz) + parallax;
       vec2 pB = pixelAtInfinity(w, clampToEyeBuffer(w, lens.xy * lens.w), qz) + parallax;
-      bool oneSurface;
-      vec4 wt = surfaceWeights(g.px, e, g.rho, oneSurface);
+      bool oneSurface = g.continuous;
+      vec4 wt = vec4(1.0);
+      if (!oneSurface) wt = surfaceWeights(g.px, e, g.rho, oneSurface);
       if (oneSurface)
         c = vec3(bilinear(pR, e).r, bilinear(g.px, e).g, bilinear(pB, e).b);
       else  // at a silhouette: the channels' few pixels apart are not worth a second search
