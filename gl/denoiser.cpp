@@ -150,22 +150,32 @@ void Denoiser::run(const DenoiseGeometry& g, const std::array<NoisyEye, 2>& eyes
   }
   const int cur = frame_ & 1;
   const bool filter = mode == DenoiseMode::Full && params_.iterations > 0;
-  // The colour history is the temporal output itself when nothing filters it (§4.1), the
-  // first a-trous iteration's output otherwise (§4.3, "feeds the history").
-  const GLuint* temporalOut = filter ? filterA_ : history_[cur];
+  const bool clamp = filter && params_.suppressFireflies;
+  const bool historyFiltered = filter && params_.historyFromFirstIteration;
+  GLuint* const history = history_[cur];
+  // The colour history is the temporal output, after the firefly clamp where it runs
+  // (DenoiseParams::historyFromFirstIteration says why not the first iteration's output).
+  GLuint* const temporalOut = clamp || historyFiltered ? filterA_ : history;
   timed("temporal", [&] { temporal(g, temporalOut[0], temporalOut[1]); });
   stages_[0][0] = temporalOut[0];
   stages_[0][1] = temporalOut[1];
   if (!filter) {
-    timed("composite", [&] { composite(history_[cur], g); });
+    timed("composite", [&] { composite(history, g); });
   } else {
-    const GLuint* in = filterA_;
-    if (params_.suppressFireflies) {
-      timed("firefly", [&] { firefly(filterA_, filterB_); });
-      in = filterB_;
+    // The iterations ping-pong between two buffers holding neither stage 0 nor the history;
+    // last frame's history is one of them once the temporal pass has read it.
+    GLuint* const scratch[2] = {temporalOut == filterA_ ? filterB_ : filterA_,
+                                temporalOut == filterA_ ? history_[cur ^ 1] : filterB_};
+    const GLuint* in = temporalOut;
+    if (clamp) {
+      const GLuint* out = historyFiltered ? scratch[0] : history;
+      timed("firefly", [&] { firefly(in, out); });
+      in = out;
     }
     for (int i = 0; i < params_.iterations; ++i) {
-      const GLuint* out = i == 0 ? history_[cur] : (in == filterB_ ? filterA_ : filterB_);
+      const GLuint* out = i == 0 && historyFiltered ? history
+                          : in == scratch[0]        ? scratch[1]
+                                                    : scratch[0];
       timed(i + 1 == params_.iterations ? "atrous+composite" : "atrous",
             [&] { atrous(i, in, out); });
       stages_[i + 1][0] = out[0];

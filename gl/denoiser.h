@@ -10,9 +10,10 @@
 //                 RGBA32UI     geometry record (instance, triangle, depth, normal)
 //                 RGBA16F      history length, depth gradient / depth, roughness
 //                 RGBA32F      luminance moments (mu1, mu2) of diffuse and specular
-//   firefly    -> RGBA16F x 2  accumulated colour, clamped to the 3x3 neighbours' maximum
-//   a-trous i  -> RGBA16F x 2  filtered colour + variance, step 2^i (SVGF §4.3-4.4); the
-//                              output of iteration 0 is next frame's colour history
+//   firefly    -> RGBA16F x 2  accumulated colour, clamped to the 3x3 neighbours' maximum;
+//                              next frame's colour history (not iteration 0's output, as
+//                              in SVGF §4.3: DenoiseParams::historyFromFirstIteration)
+//   a-trous i  -> RGBA16F x 2  filtered colour + variance, step 2^i (SVGF §4.3-4.4)
 //   composite  -> RGBA16F      linear colour (for the headset compositor)
 //                 RGBA8        display colour: exposure, PBR Neutral, sRGB-encoded
 //                 R32F         reversed-Z depth (the G-buffer's is overwritten next frame)
@@ -89,6 +90,24 @@ struct DenoiseParams {
   // 0.0192 to 0.0152 (its metal spheres' fireflies are 10-100x their neighbours).
   bool suppressFireflies = true;
   float fireflyFactor = 4.0f;
+  // SVGF §4.3 feeds the colour history with the first a-trous iteration's output; ours is
+  // the temporal output after the firefly clamp. Fed back, the step-1 filter is applied
+  // again every frame, and its small leak across an edge that the luminance weight does
+  // not stop compounds over the history's ~1 / alpha = 5 frames. Measured on the spheres
+  // scene (tests/hybrid, 96x108, 8 frames, tracer seeds 10-25): 76 % of the denoised
+  // relMSE (0.0167) was the same in every seed, and 60 % came from the shadowed floor (8 %
+  // of the pixels), the 1-2 pixel contact shadows under the spheres. One such pixel:
+  // reference 0.107, raw frame 0.119 (mean over seeds), temporal pass alone 0.112, with
+  // the 5 iterations 0.295, with only the first 0.252. The pixel beside it on the shadow's
+  // edge, lit or not by turns under the jitter, has 25x its variance, and the 3x3 variance
+  // prefilter (§4.4) widens the shadow pixel's luminance weight with it. With the temporal
+  // output as history that pixel reads 0.218, the shadowed floor's share drops from 0.0100
+  // to 0.0048 and spheres' relMSE from 0.0167 to 0.0111. Seeds 0, 2-4, this (default) vs
+  // SVGF's: spheres 0.0101-0.0119 vs 0.0152-0.0172, cornell 0.0171-0.0180 vs
+  // 0.0166-0.0178, atrium 0.0297-0.0311 vs 0.0274-0.0290 (the filtered history's lower
+  // noise was worth 9 % there).
+  // tests/hybrid/denoise_history_test.cpp shows the mechanism on a synthetic shadow.
+  bool historyFromFirstIteration = false;
   // SVGF §4.3: 5 a-trous iterations (steps 1, 2, 4, 8, 16).
   int iterations = 5;
   // Resolve: temporal anti-aliasing of the re-modulated result, which ends SVGF's pipeline

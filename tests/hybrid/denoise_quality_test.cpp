@@ -38,18 +38,23 @@ struct Case {
   const char* scene;
   // cornell and atrium: 128 (their references cost 4x spheres' per sample; 1.5 / 128 =
   // 0.012 inflates the measured error ~1.6x, still far inside the 10x); spheres: 512,
-  // whose denoised error is close to its guard (0.15 / 512 = 3e-4 against 0.015).
+  // whose denoised error is the closest to its guard (0.15 / 512 = 3e-4 against 0.011).
   int referenceSpp;
   // Required raw / denoised relMSE; the issue asks for 10x. Measured here (raw ->
-  // denoised): cornell 1.56 -> 0.0178 (87x), atrium 1.60 -> 0.0275 (58x), spheres 0.154 ->
-  // 0.0152 (10.2x). Before the resolve pass, the fwidth normal test, the variance of the
-  // mean and the firefly clamp (at 48x54): cornell 7.9x, spheres 1.2x, atrium 7.7x.
-  // cornell and atrium are guarded at the target, 6-9x under what they measure. spheres
-  // meets it only just: with tracer seeds 2-4 it measured 9.0x, 9.9x and 8.6x (its raw
-  // relMSE is what varies; seed 1's raw frame held a firefly worth 58x). The remaining
-  // error is the sun-lit floor, whose 1-spp light selection is bimodal so that the
-  // variance-guided filter smears the spheres' contact shadows. Guarded at 8x, under the
-  // lowest seed measured.
+  // denoised, tracer seeds 0 (the test's), 2, 3, 4): cornell 1.56-2.67 -> 0.0171-0.0180
+  // (87-157x), atrium 1.56-1.85 -> 0.0297-0.0311 (50-61x), spheres 0.149-0.164 ->
+  // 0.0101-0.0119 (15.2x, 13.7x, 15.3x, 12.5x). Before the resolve pass, the fwidth normal
+  // test, the variance of the mean and the firefly clamp (at 48x54): cornell 7.9x, spheres
+  // 1.2x, atrium 7.7x. spheres was at 8.6-10.2x until the colour history was taken from
+  // the temporal output instead of the first a-trous iteration (gl/denoiser.h,
+  // historyFromFirstIteration): three quarters of its denoised error was the same in every
+  // seed, the filter re-applied through the history brightening the 1-2 pixel contact
+  // shadows under the spheres, not noise. Over tracer seeds 0-25 spheres measures 10.8x
+  // at seed 24 and 12.5-115x at the others; its raw relMSE is what varies (0.127 to 1.42:
+  // fireflies), the denoised one stays at 0.0100-0.0154. Sampling the sun and the sky at
+  // every vertex (instead of one of them, in proportion to power) lowered spheres' raw
+  // relMSE more than its denoised one: 21x, 12x, 9.9x, 7.3x at the seeds above. All three
+  // scenes are guarded at the target.
   double required;
 };
 
@@ -81,7 +86,7 @@ TEST_P(DenoiseQuality, EightFramesOfHistoryBeatTheRawFrame) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DenoiseQuality,
-                         ::testing::Values(Case{"cornell", 128, 10.0}, Case{"spheres", 512, 8.0},
+                         ::testing::Values(Case{"cornell", 128, 10.0}, Case{"spheres", 512, 10.0},
                                            Case{"atrium", 128, 10.0}),
                          [](const auto& info) { return std::string(info.param.scene); });
 
