@@ -3,8 +3,6 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "gl/gl_api.h"
-#include "gl/textures.h"
 #include "hmd/fusion.h"
 #include "hmd/recording.h"
 #include "hmd/sensor_stream.h"
@@ -115,16 +113,7 @@ HeadsetCompositor::HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth
                                      int rotation)
     : timewarp_(dk2PanelLens(panelWidth, panelHeight), eyeWidth, eyeHeight, dk2EyeFov()),
       output_(panelWidth, panelHeight, rotation),
-      inColor_(gl::makeArrayTexture(GL_RGBA32F, eyeWidth, eyeHeight, 2)),
-      inDepth_(gl::makeArrayTexture(GL_R32F, eyeWidth, eyeHeight, 2)) {
-  gl::api::ClearTexImage(inColor_, 0, GL_RGBA, GL_FLOAT, nullptr);
-  gl::api::ClearTexImage(inDepth_, 0, GL_RED, GL_FLOAT, nullptr);
-}
-
-HeadsetCompositor::~HeadsetCompositor() {
-  const GLuint t[] = {inColor_, inDepth_};
-  gl::api::DeleteTextures(2, t);
-}
+      uploaded_(eyeWidth, eyeHeight) {}
 
 void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
                             const std::array<EyeCamera, 2>& from,
@@ -134,18 +123,13 @@ void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
 
 void HeadsetCompositor::upload(int eye, const std::vector<glm::vec4>& color,
                                const std::vector<float>& depth) {
-  const int w = timewarp_.eyeWidth(), h = timewarp_.eyeHeight();
-  if (eye < 0 || eye > 1 || color.size() != size_t(w) * h || depth.size() != color.size())
-    throw UsageError("compositor: eye image size");
-  gl::api::PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  gl::api::TextureSubImage3D(inColor_, 0, 0, 0, eye, w, h, 1, GL_RGBA, GL_FLOAT, color.data());
-  gl::api::TextureSubImage3D(inDepth_, 0, 0, 0, eye, w, h, 1, GL_RED, GL_FLOAT, depth.data());
+  uploaded_.upload(eye, color, depth);
 }
 
 void HeadsetCompositor::runUploaded(const std::array<EyeCamera, 2>& from,
                                     const std::array<EyeCamera, 2>& to, float exposure,
                                     bool reproject) {
-  run(inColor_, inDepth_, from, to, exposure, reproject);
+  run(uploaded_.color(), uploaded_.depth(), from, to, exposure, reproject);
 }
 
 Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height) {

@@ -12,6 +12,7 @@
 #include "core/image_io.h"
 #include "core/camera.h"
 #include "gl/compositor.h"
+#include "gl/eye_arrays.h"
 #include "gl/timewarp.h"
 #include "gl/panel_output.h"
 #include "hmd/head_tracker.h"
@@ -51,9 +52,6 @@ class HeadsetCompositor {
   // eyeWidth x eyeHeight eyes with the DK2 FOV onto a panelWidth x panelHeight panel
   // (the DK2's physical panel at that pixel count), output turned by 'rotation'.
   HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight, int rotation);
-  ~HeadsetCompositor();
-  HeadsetCompositor(const HeadsetCompositor&) = delete;
-  HeadsetCompositor& operator=(const HeadsetCompositor&) = delete;
 
   // 'colorArray'/'depthArray' (2-layer, linear colour / reversed-Z depth) were rendered
   // with 'from'; shown at 'to'. reproject = false shows the frame as rendered.
@@ -72,7 +70,7 @@ class HeadsetCompositor {
  private:
   gl::Timewarp timewarp_;
   gl::PanelOutput output_;
-  unsigned inColor_ = 0, inDepth_ = 0;  // what upload() fills
+  gl::EyeArrays uploaded_;
 };
 
 // The DK2 lens at a panel's pixel count (hmd::LensModel defaults, dk2.md §2, §6) and the

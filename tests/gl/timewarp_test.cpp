@@ -10,9 +10,8 @@
 
 #include "core/camera.h"
 #include "gl/compositor.h"
-#include "gl/gl_api.h"
+#include "gl/eye_arrays.h"
 #include "gl/panel_output.h"
-#include "gl/textures.h"
 #include "gl/timewarp.h"
 #include "hmd/lens.h"
 #include "tests/gl/gl_test_util.h"
@@ -24,22 +23,9 @@ namespace {
 using namespace photovr::testing;  // the two-plane scene
 
 // Both eyes' colour and depth as the 2-layer arrays a rendered frame arrives in.
-struct EyeArrays {
-  GLuint color = 0, depth = 0;
-  EyeArrays(const std::array<EyeImage, 2>& eyes, int w, int h) {
-    color = gl::makeArrayTexture(GL_RGBA32F, w, h, 2);
-    depth = gl::makeArrayTexture(GL_R32F, w, h, 2);
-    gl::api::PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (int e = 0; e < 2; ++e) {
-      gl::api::TextureSubImage3D(color, 0, 0, 0, e, w, h, 1, GL_RGBA, GL_FLOAT,
-                                 eyes[e].color.data());
-      gl::api::TextureSubImage3D(depth, 0, 0, 0, e, w, h, 1, GL_RED, GL_FLOAT,
-                                 eyes[e].depth.data());
-    }
-  }
-  ~EyeArrays() {
-    const GLuint t[] = {color, depth};
-    gl::api::DeleteTextures(2, t);
+struct EyeArrays : gl::EyeArrays {
+  EyeArrays(const std::array<EyeImage, 2>& eyes, int w, int h) : gl::EyeArrays(w, h) {
+    for (int e = 0; e < 2; ++e) upload(e, eyes[e].color, eyes[e].depth);
   }
 };
 
@@ -58,7 +44,7 @@ std::array<ReprojectedEye, 2> runEyes(gl::Timewarp& t, const std::array<EyeImage
                                       const std::array<EyeCamera, 2>& from,
                                       const std::array<EyeCamera, 2>& to) {
   const EyeArrays arrays(in, from[0].width, from[0].height);
-  t.runEyes(arrays.color, arrays.depth, from, to);
+  t.runEyes(arrays.color(), arrays.depth(), from, to);
   std::array<ReprojectedEye, 2> out;
   for (int e = 0; e < 2; ++e) out[e] = {t.readColor(e), t.readDepth(e)};
   return out;
@@ -147,7 +133,7 @@ PanelDifference compare(const std::vector<glm::u8vec4>& a, const std::vector<glm
 std::vector<glm::u8vec4> referencePanel(const gl::LensParams& lens, const EyeArrays& eyes, int w,
                                         int h, float exposure, int rotation) {
   gl::Distorter d(lens, w, h, dk2Fov());
-  d.run(eyes.color);
+  d.run(eyes.color());
   gl::PanelOutput out(lens.hResolution, lens.vResolution, rotation);
   out.run(d.panelTexture(), exposure);
   return out.read();
@@ -167,7 +153,7 @@ TEST(Timewarp, PanelAtTheRenderedPoseIsTheDistortionChain) {
   for (int rotation : {0, 90}) {
     gl::Timewarp t(lens, w, h, dk2Fov());
     gl::PanelOutput out(lens.hResolution, lens.vResolution, rotation);
-    t.runPanel(eyes.color, eyes.depth, cams, cams, 1.5f, out);
+    t.runPanel(eyes.color(), eyes.depth(), cams, cams, 1.5f, out);
     const PanelDifference d = compare(out.read(), referencePanel(lens, eyes, w, h, 1.5f, rotation));
     std::printf(
         "timewarp panel vs distortion chain (rotation %d): %d visible pixels, mean %.3f, "
@@ -196,17 +182,17 @@ TEST(Timewarp, PanelAtANewPoseShowsTheSceneThere) {
   const EyeArrays atB({render(to[0]), render(to[1])}, w, h);
   gl::Timewarp t(lens, w, h, dk2Fov());
   gl::PanelOutput out(lens.hResolution, lens.vResolution, 90);
-  t.runPanel(atA.color, atA.depth, from, to, 1.0f, out);
+  t.runPanel(atA.color(), atA.depth(), from, to, 1.0f, out);
   const PanelDifference moved = compare(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
   // Without re-projection (A's frame shown as it was) for scale.
-  t.runPanel(atA.color, atA.depth, from, from, 1.0f, out);
+  t.runPanel(atA.color(), atA.depth(), from, from, 1.0f, out);
   const PanelDifference stale = compare(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
   int disoccluded = 0, visible = 0;
   for (int e = 0; e < 2; ++e) {
     const gl::ReprojectStats s = t.stats(e);
     visible += s.reprojected + s.filled + s.uncovered;
   }
-  t.runPanel(atA.color, atA.depth, from, to, 1.0f, out);
+  t.runPanel(atA.color(), atA.depth(), from, to, 1.0f, out);
   for (int e = 0; e < 2; ++e) disoccluded += t.stats(e).filled + t.stats(e).uncovered;
   std::printf(
       "timewarp panel at a moved pose vs the scene traced there: mean %.3f levels "
