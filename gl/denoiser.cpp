@@ -213,7 +213,7 @@ void Denoiser::uploadUniforms(bool reset) {
   u.reject = {p.depthRejectFactor, p.depthRejectEpsilon, p.normalRejectDistance,
               p.requireSameTriangle ? 1.0f : 0.0f};
   u.edge = {p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance, p.sigmaLuminanceSpecular};
-  u.display = {p.exposure, p.specularFootprint, 0.0f, 0.0f};
+  u.display = {p.exposure, p.specularFootprint, p.specularMaxStep, 0.0f};
   u.tuning = {p.normalRejectSlope, p.resolveAlpha, float(p.resolveHistoryCap), p.fireflyFactor};
   u.frame = {width_, height_, reset ? 1 : 0, 0};
   api::NamedBufferSubData(uniforms_, 0, sizeof(u), &u);

@@ -79,9 +79,25 @@ struct DenoiseParams {
   // Ours (no source in SVGF, which has no specular split): a tighter colour weight for
   // specular, whose edges are reflections that the geometry weights cannot see.
   float sigmaLuminanceSpecular = 2.0f;
-  // Ours: specular is filtered while step <= max(1, footprint x alpha), alpha = roughness^2
-  // (GGX lobe width); 16 lets roughness 1 use all 5 levels, 0.5 the first 3.
-  float specularFootprint = 16.0f;
+  // Ours: specular is filtered while step <= max(1, min(maxStep, footprint x alpha)), alpha =
+  // roughness^2: the GGX lobe's width (the half-angle holding 75 % of it has tangent 3 alpha,
+  // Lagarde and de Rousiers 2014, "Moving Frostbite to PBR", p. 72, as NRD uses it).
+  // 32 lets roughness 0.25 use steps 1-2, 0.35 and up 1-4, below 0.25 step 1 only. It was
+  // 16 (roughness 0.25: step 1 only), which left cornell's glossy tall block (metal,
+  // roughness 0.25, reflecting the red wall and the floor) speckled where the reference is
+  // smooth. Measured (tests/hybrid/denoise_glossy_test.cpp: 96x108, 8 frames, 512-spp
+  // reference, relMSE over the block's interior pixels, tracer seeds 0 and 2-5): 0.0096-0.0119
+  // with (16, no cap), 0.0071-0.0077 with (32, 4); at 240x270, seed 0: 0.0119 -> 0.0072.
+  // 64 (steps 1-4 at 0.25) took the block to 0.0062 at 240x270 but blurred the atrium's
+  // narrow sky streak on its polished floor (roughness 0.3): atrium relMSE +0.1 to +1.2 %.
+  float specularFootprint = 32.0f;
+  // ... and never beyond step 4 (a reach of +-14 pixels): steps 8 and 16 only spread the
+  // rough specular lobe across shadow edges (it carries the shadows as diffuse does, with
+  // the larger relative noise of a small specular albedo). Measured with footprint 32, seeds
+  // 0, 2, 3, 4, uncapped -> capped: spheres 0.01017-0.01194 -> 0.01011-0.01189 (under the
+  // old 0.01014-0.01191), atrium 0.02925-0.03067 -> 0.02922-0.03064 (old 0.02968-0.03110);
+  // cap 8 sat in between (seeds 0, 2).
+  float specularMaxStep = 4.0f;
   // Before the a-trous filter, clamp each lobe's accumulated luminance to 'factor' x the
   // brightest of its 3x3 neighbours on the same surface (rank-conditioned rank selection
   // as NRD ReLAX's anti-firefly; shaders/svgf_firefly.comp). Factor 4, measured (96x108,

@@ -70,8 +70,10 @@ struct DenoiseUniforms {
   vec4 reject;    // depth reject factor, relative depth epsilon, normal reject distance,
                   // 1 = require the same triangle id
   vec4 edge;      // sigma_z, sigma_n, sigma_l diffuse, sigma_l specular
-  vec4 display;   // exposure, specular footprint (steps per unit GGX alpha), -, -
-  vec4 tuning;    // normal reject slope, resolve blend weight, resolve history cap, -
+  vec4 display;   // exposure, specular footprint (steps per unit GGX alpha), its largest
+                  // step, -
+  vec4 tuning;    // normal reject slope, resolve blend weight, resolve history cap,
+                  // firefly factor
   ivec4 frame;    // eye width, eye height, 1 = reset history, -
 };
 

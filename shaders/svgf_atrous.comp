@@ -48,8 +48,10 @@ void main() {
     vec4 aux = texelFetch(aAux, p, 0);
     vec2 gradient = aux.yz * g.depth;
     // Specular lobe footprint: filter while the step is within 'footprint x GGX alpha'
-    // pixels (alpha = roughness^2); mirrors keep their reflections (always >= step 1).
-    bool filterSpecular = float(uStep) <= max(1.0, params.display.y * aux.w * aux.w);
+    // pixels (alpha = roughness^2), at most the cap; mirrors keep their reflections (always
+    // >= step 1). gl/denoiser.h gives the measurements behind both.
+    float lobeSteps = min(params.display.z, params.display.y * aux.w * aux.w);
+    bool filterSpecular = float(uStep) <= max(1.0, lobeSteps);
     // §4.4 eq. (5): phi_l = sigma_l sqrt(g3x3(Var)) + epsilon (Falcor's 1e-10).
     vec2 phi = params.edge.zw * sqrt(prefilteredVariance(p)) + 1e-10;
     float ld = luminance(diffuse.rgb), ls = luminance(specular.rgb);

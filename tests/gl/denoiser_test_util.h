@@ -340,7 +340,9 @@ inline CpuAtrousOut cpuAtrous(const gl::DenoiseParams& p, const SyntheticFrame& 
       const glm::vec2 phi =
           glm::vec2(p.sigmaLuminance, p.sigmaLuminanceSpecular) * glm::sqrt(var / vw) + 1e-10f;
       const glm::vec2 grad = glm::vec2(aux[c].y, aux[c].z) * l.depth[c];
-      const bool spec = float(step) <= std::max(1.0f, p.specularFootprint * aux[c].w * aux[c].w);
+      const float lobeSteps =
+          std::min(p.specularMaxStep, p.specularFootprint * aux[c].w * aux[c].w);
+      const bool spec = float(step) <= std::max(1.0f, lobeSteps);
       glm::vec4 sd(0), ss(0);
       glm::vec2 ws(0);
       for (int v = -2; v <= 2; ++v)
