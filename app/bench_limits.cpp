@@ -84,13 +84,14 @@ GlLimit measureGlLimits(int w, int h, gl::Context& context) {
     pass.render(gpu, cams, vp);
     pass.finish();
   });
+  std::array<gl::GBufferImage, 2> images;  // reused, as the renderers do
   g.readbackMs = bestMs(6, [&] {
-    for (int e = 0; e < 2; ++e) pass.read(e);
+    for (int e = 0; e < 2; ++e) pass.read(e, images[e]);
   });
   gl::GBufferReadback pbo(pass);
   g.pboReadbackMs = bestMs(6, [&] {
     pbo.start(2);
-    pbo.finish();
+    pbo.finish(images);
   });
   return g;
 }

@@ -53,8 +53,13 @@ void ViewRenderer::start(const std::array<EyeCamera, 2>& eyes, const FrameSettin
   job.eyes = eyes;
   job.settings = settings;
   job.gbufferMs = msSince(t0);
+  std::array<gl::GBufferImage, 2> g;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(g, spare_);
+  }
   const auto t1 = Clock::now();
-  std::array<gl::GBufferImage, 2> g = {pass_.read(0), pass_.read(1)};
+  for (int e = 0; e < 2; ++e) pass_.read(e, g[e]);
   job.readbackMs = msSince(t1);
   {
     std::lock_guard lock(mutex_);
@@ -115,6 +120,7 @@ void ViewRenderer::workerLoop() {
       failure = std::current_exception();
     }
     lock.lock();
+    spare_ = std::move(job.second);
     done_ = std::move(f);
     failure_ = failure;
     working_ = false;

@@ -70,6 +70,9 @@ class ViewRenderer {
   std::condition_variable wake_;
   std::optional<std::pair<FinishedFrame, std::array<gl::GBufferImage, 2>>> job_;
   std::optional<FinishedFrame> done_;
+  // The traced job's G-buffer, handed back for the next read-back to reuse its storage
+  // (gl::GBufferPass::read says why).
+  std::array<gl::GBufferImage, 2> spare_;
   std::exception_ptr failure_;
   bool working_ = false, quit_ = false;
   std::thread worker_;

@@ -40,11 +40,10 @@ GLuint makeTexture(GLenum target, GLenum internal, int w, int h, int layers) {
 }
 
 template <typename T>
-std::vector<T> readLayer(GLuint tex, const TargetFormat& f, int w, int h, int layer) {
-  std::vector<T> out(size_t(w) * h);
+void readLayer(GLuint tex, const TargetFormat& f, int w, int h, int layer, std::vector<T>& out) {
+  out.resize(size_t(w) * h);
   api::GetTextureSubImage(tex, 0, 0, 0, layer, w, h, 1, f.format, f.type,
                           GLsizei(out.size() * sizeof(T)), out.data());
-  return out;
 }
 
 }  // namespace
@@ -190,18 +189,22 @@ void GBufferPass::finish() const {
 
 GBufferImage GBufferPass::read(int eye) const {
   GBufferImage img;
+  read(eye, img);
+  return img;
+}
+
+void GBufferPass::read(int eye, GBufferImage& img) const {
   img.width = width_;
   img.height = height_;
   const int w = width_, h = height_;
-  img.visibility = readLayer<glm::uvec4>(layers_[0], kFormats[0], w, h, eye);
-  img.normal = readLayer<glm::vec4>(layers_[1], kFormats[1], w, h, eye);
-  img.baseColor = readLayer<glm::vec4>(layers_[2], kFormats[2], w, h, eye);
-  img.material = readLayer<glm::vec4>(layers_[3], kFormats[3], w, h, eye);
-  img.emission = readLayer<glm::vec4>(layers_[4], kFormats[4], w, h, eye);
-  img.motion = readLayer<glm::vec2>(layers_[5], kFormats[5], w, h, eye);
-  img.depth = readLayer<float>(depthLayers_, {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT},
-                               w, h, eye);
-  return img;
+  readLayer(layers_[0], kFormats[0], w, h, eye, img.visibility);
+  readLayer(layers_[1], kFormats[1], w, h, eye, img.normal);
+  readLayer(layers_[2], kFormats[2], w, h, eye, img.baseColor);
+  readLayer(layers_[3], kFormats[3], w, h, eye, img.material);
+  readLayer(layers_[4], kFormats[4], w, h, eye, img.emission);
+  readLayer(layers_[5], kFormats[5], w, h, eye, img.motion);
+  readLayer(depthLayers_, {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT}, w, h, eye,
+            img.depth);
 }
 
 }  // namespace photovr::gl

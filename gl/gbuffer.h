@@ -52,6 +52,10 @@ class GBufferPass {
   void render(const SceneGpu& scene, const std::array<EyeCamera, 2>& eyes,
               const std::array<glm::mat4, 2>& previousViewProjection);
   GBufferImage read(int eye) const;
+  // Into 'img', reusing its vectors' storage: fresh memory costs its first touch, ~3 us per
+  // 4 KiB page in the VM measured here, ~45 ms per 960x1080 RGBA32F target (docs/
+  // ARCHITECTURE.md, "Memory reuse"); a sequence reads into the same image every frame.
+  void read(int eye, GBufferImage& img) const;
   void finish() const;  // waits until the G-buffer is complete (for timing stages apart)
 
   EyeRouting routing() const { return routing_; }

@@ -53,14 +53,13 @@ void GBufferReadback::start(int eyeCount) {
   eyeCount_ = eyeCount;
 }
 
-std::array<GBufferImage, 2> GBufferReadback::finish() {
+void GBufferReadback::finish(std::array<GBufferImage, 2>& out) {
   const GLsync sync = static_cast<GLsync>(fence_);
   api::ClientWaitSync(sync, GL_SYNC_FLUSH_COMMANDS_BIT, ~GLuint64(0));
   api::DeleteSync(sync);
   fence_ = nullptr;
   const int w = pass_.width(), h = pass_.height();
   const size_t n = size_t(w) * h;
-  std::array<GBufferImage, 2> out;
   std::vector<const uint8_t*> maps(targets_.size());
   for (size_t t = 0; t < targets_.size(); ++t)
     maps[t] = static_cast<const uint8_t*>(api::MapNamedBufferRange(
@@ -79,7 +78,6 @@ std::array<GBufferImage, 2> GBufferReadback::finish() {
     copyOut(at(6), g.depth, n);
   }
   for (unsigned b : buffers_) api::UnmapNamedBuffer(b);
-  return out;
 }
 
 }  // namespace photovr::gl

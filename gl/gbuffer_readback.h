@@ -19,7 +19,8 @@ class GBufferReadback {
   GBufferReadback& operator=(const GBufferReadback&) = delete;
 
   void start(int eyeCount);  // after pass.render(); eyeCount 1 or 2 layers
-  std::array<GBufferImage, 2> finish();
+  // Into 'out', reusing its storage (GBufferPass::read says why).
+  void finish(std::array<GBufferImage, 2>& out);
   bool pending() const { return fence_ != nullptr; }
 
  private:

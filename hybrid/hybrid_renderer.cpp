@@ -52,13 +52,12 @@ std::array<EyeImage, 2> HybridRenderer::render(
   drawGBuffer(eyes);
   pass_.finish();
   const auto t1 = Clock::now();
-  std::array<gl::GBufferImage, 2> g;
-  for (int e = 0; e < eyeCount; ++e) g[e] = pass_.read(e);
+  for (int e = 0; e < eyeCount; ++e) pass_.read(e, gbuffers_[e]);
   const auto t2 = Clock::now();
   HybridFrameTimes t;
   t.gbufferMs = msBetween(t0, t1);
   t.readbackMs = msBetween(t1, t2);
-  auto out = trace(g, eyes, eyeCount, frame, t, sppMaps);
+  auto out = trace(gbuffers_, eyes, eyeCount, frame, t, sppMaps);
   if (times) *times = t;
   return out;
 }
@@ -89,9 +88,9 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
         readback[(f + 1) % 2].start(eyeCount);
       }
       const auto t0 = Clock::now();
-      const auto g = readback[f % 2].finish();
+      readback[f % 2].finish(gbuffers_);
       sum.gbufferMs += msBetween(t0, Clock::now());
-      auto images = trace(g, current, eyeCount, uint32_t(f), sum, {});
+      auto images = trace(gbuffers_, current, eyeCount, uint32_t(f), sum, {});
       onFrame(uint32_t(f), images);
       current = next;
     }

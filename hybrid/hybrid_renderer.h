@@ -57,6 +57,7 @@ class HybridRenderer {
   const Scene& scene_;
   gl::SceneGpu gpu_;
   gl::GBufferPass pass_;
+  std::array<gl::GBufferImage, 2> gbuffers_;  // the last read-back, its storage reused
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;
