@@ -7,6 +7,7 @@
 #include <limits>
 #include <functional>
 #include <memory>
+#include <utility>
 
 #include "app/bench_memory.h"
 #include "app/sample_maps.h"
@@ -105,6 +106,7 @@ struct PathTracedRun {
   LightSet lights;
   TraceContext ctx;
   std::array<EyeImage, 2> sums;
+  Eyes last;  // the previous frame's, traced into (as the hybrid reuses its storage)
   const BenchConfig& c;
   const View& view;
   uint64_t rejected = 0;
@@ -119,7 +121,9 @@ struct PathTracedRun {
   std::array<std::vector<glm::vec3>, 2> frame(uint32_t f, FrameRecord& r) {
     const auto cams = eyeCameras(view, c.width, c.height, f);
     const auto t0 = Clock::now();
-    const Eyes out = {renderPathTraced(ctx, cams[0], 0, f), renderPathTraced(ctx, cams[1], 1, f)};
+    Eyes& out = last;
+    for (int e = 0; e < 2; ++e)
+      out[e] = renderPathTraced(ctx, cams[e], uint32_t(e), f, std::move(out[e]));
     r.traceMs = r.frameMs = msSince(t0);
     r.rays = out[0].rays + out[1].rays;
     r.mraysPerSecond = double(r.rays) / (r.traceMs * 1e3);
@@ -175,9 +179,11 @@ ConfigResult runConfig(const BenchConfig& c, const BenchScene& s, gl::Context& c
         c, s,
         [&](uint32_t f, FrameRecord& r) {
           const auto t0 = Clock::now();
-          const Eyes out = run.render(f, r);
+          Eyes out = run.render(f, r);
           r.frameMs = msSince(t0);
-          return run.shown(out, f);
+          auto shown = run.shown(out, f);
+          run.renderer.recycle(std::move(out));
+          return shown;
         },
         run.maps);
     result.rejectedSamples = run.rejected;

@@ -273,9 +273,9 @@ struct Session {
     stats.denoiseMs = msSince(t0);
     stats.meanSpp = 0.5 * (meanSamples(f.images[0]) + meanSamples(f.images[1]));
     ++stats.rendered;
+    renderer->recycle(std::move(f.images));  // used up: the next frame is traced into them
     shown = std::move(f);
     stats.last = *shown;
-    stats.last.images = {};
   }
 
   void composite(const glm::ivec2& framebuffer) {

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "app/gl_context.h"
 #include "app/options.h"
@@ -159,7 +160,7 @@ class HmdSequence {
     const auto to =
         headEyes(composePose(r_.view.head, trackedB), r_.width, r_.height, glm::vec2(0));
     const auto tr = Clock::now();
-    const auto eyes = render(from, k);
+    auto eyes = render(from, k);
     const double renderMs = msSince(tr);
     const auto tc = Clock::now();
     composite(eyes, from, to);
@@ -173,6 +174,7 @@ class HmdSequence {
                << compositor_.timewarp().stats(0).disoccludedFraction() << ','
                << compositor_.timewarp().stats(1).disoccludedFraction() << ',' << renderMs << ','
                << compositorMs << '\n';
+    renderer_.recycle(std::move(eyes));
   }
 
   void finish(const HmdSequenceOptions& o) {

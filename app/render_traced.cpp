@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <utility>
 
 #include "app/gl_context.h"
 #include "app/render_request.h"
@@ -31,12 +32,14 @@ gl::DenoiseParams paramsOf(const RenderRequest& r) {
 
 using FrameRenderer =
     std::function<std::array<EyeImage, 2>(const std::array<EyeCamera, 2>&, uint32_t)>;
+// Takes a frame's images back once they are accumulated (HybridRenderer::recycle).
+using FrameRecycler = std::function<void(std::array<EyeImage, 2>&&)>;
 
 // Renders r.frames frames (jitter from the frame index) and returns the per-eye means; with
 // r.converge > 0 it stops as soon as the estimated relMSE of the mean drops below it (the
 // view is static, so later frames would only refine a converged image).
 std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRenderer& renderFrame,
-                                       int& framesDone) {
+                                       int& framesDone, const FrameRecycler& recycle = {}) {
   const int eyeCount = r.view.stereo ? 2 : 1;
   std::vector<EyeImage> sums(eyeCount);
   ConvergenceMonitor monitor;
@@ -44,12 +47,13 @@ std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRender
   uint64_t rays = 0;
   for (framesDone = 0; framesDone < r.frames;) {
     const int f = framesDone;
-    const auto frame = renderFrame(eyeCameras(r.view, r.width, r.height, uint32_t(f)), uint32_t(f));
+    auto frame = renderFrame(eyeCameras(r.view, r.width, r.height, uint32_t(f)), uint32_t(f));
     for (int e = 0; e < eyeCount; ++e) {
       rays += frame[e].rays;
       accumulate(sums[e], frame[e], f);
       if (r.converge > 0.0) monitor.add(e, frame[e].color, r.width);
     }
+    if (recycle) recycle(std::move(frame));
     ++framesDone;
     const double done = double(framesDone) / r.frames, elapsed = secondsSince(t0);
     reportProgress(done, rays / elapsed, elapsed * (1.0 - done) / done);
@@ -159,6 +163,7 @@ int renderPathTracedMode(const RenderRequest& r) {
     guides = std::make_unique<GuideBuffers>(r, *context);
   }
   double traceMs = 0.0, denoiseMs = 0.0;
+  std::array<EyeImage, 2> spare;  // each frame's images once accumulated, traced into next
   const auto t1 = Clock::now();
   int frames = 0;
   const auto sums = accumulateFrames(
@@ -166,7 +171,8 @@ int renderPathTracedMode(const RenderRequest& r) {
       [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
         const auto ts = Clock::now();
         std::array<EyeImage, 2> out;
-        for (int e = 0; e < eyeCount; ++e) out[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), f);
+        for (int e = 0; e < eyeCount; ++e)
+          out[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), f, std::move(spare[e]));
         traceMs += 1e3 * secondsSince(ts);
         if (guides) {
           const auto td = Clock::now();
@@ -175,7 +181,7 @@ int renderPathTracedMode(const RenderRequest& r) {
         }
         return out;
       },
-      frames);
+      frames, [&](std::array<EyeImage, 2>&& images) { spare = std::move(images); });
   char stages[192];
   std::snprintf(stages, sizeof stages,
                 "BVH build %.0f ms (once), trace %.1f ms, denoise (%s) %.1f ms", buildMs,
@@ -221,7 +227,7 @@ int renderHybridMode(const RenderRequest& r) {
         }
         return out;
       },
-      frames);
+      frames, [&](std::array<EyeImage, 2>&& images) { renderer.recycle(std::move(images)); });
   char stages[320];
   const double n = frames;
   std::snprintf(stages, sizeof stages,

@@ -77,7 +77,12 @@ std::optional<FinishedFrame> ViewRenderer::take() {
   return out;
 }
 
-FinishedFrame ViewRenderer::trace(FinishedFrame f, const std::array<gl::GBufferImage, 2>& g) const {
+void ViewRenderer::recycle(std::array<EyeImage, 2>&& images) {
+  std::lock_guard lock(mutex_);
+  spareImages_ = std::move(images);
+}
+
+FinishedFrame ViewRenderer::trace(FinishedFrame f, const std::array<gl::GBufferImage, 2>& g) {
   const auto t0 = Clock::now();
   TraceContext ctx{scene_, embree_, lights_, {}};
   ctx.settings.samplesPerPixel = f.settings.spp;
@@ -85,7 +90,8 @@ FinishedFrame ViewRenderer::trace(FinishedFrame f, const std::array<gl::GBufferI
   ctx.settings.seed = 0;
   for (int e = 0; e < 2; ++e) {
     if (f.settings.pathTraced) {
-      f.images[e] = renderPathTraced(ctx, f.eyes[e], uint32_t(e), f.index);
+      f.images[e] =
+          renderPathTraced(ctx, f.eyes[e], uint32_t(e), f.index, std::move(eyeBuffers_[e].image));
       continue;
     }
     std::vector<uint16_t> map;
@@ -95,8 +101,9 @@ FinishedFrame ViewRenderer::trace(FinishedFrame f, const std::array<gl::GBufferI
         if (s) s = uint16_t(std::max(1, (s * f.settings.spp + kLensMapSpp - 1) / kLensMapSpp));
     }
     HybridEyeStats stats;
-    f.images[e] = traceFromGBuffer(ctx, g[e], f.eyes[e], uint32_t(e), f.index,
-                                   f.settings.lensMatched ? &map : nullptr, &stats);
+    f.images[e] =
+        traceFromGBuffer(ctx, g[e], f.eyes[e], uint32_t(e), f.index,
+                         f.settings.lensMatched ? &map : nullptr, &stats, &eyeBuffers_[e]);
   }
   f.traceMs = msSince(t0);
   f.totalMs = f.gbufferMs + f.readbackMs + f.traceMs;
@@ -111,6 +118,9 @@ void ViewRenderer::workerLoop() {
     if (quit_) return;
     auto job = std::move(*job_);
     job_.reset();
+    for (int e = 0; e < 2; ++e)
+      if (!spareImages_[e].color.empty()) eyeBuffers_[e].image = std::move(spareImages_[e]);
+    spareImages_ = {};
     lock.unlock();
     std::optional<FinishedFrame> f;
     std::exception_ptr failure;

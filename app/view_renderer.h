@@ -16,6 +16,7 @@
 #include "core/scene.h"
 #include "gl/gbuffer.h"
 #include "gl/scene_gpu.h"
+#include "hybrid/hybrid_tracer.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
 #include "trace/path_tracer.h"
@@ -49,12 +50,15 @@ class ViewRenderer {
   void start(const std::array<EyeCamera, 2>& eyes, const FrameSettings& settings);
   // The finished frame, once; rethrows what the worker threw while tracing it.
   std::optional<FinishedFrame> take();
+  // Hands a taken frame's images back when they are used up: the worker traces a later
+  // frame into their storage instead of fresh memory (hybrid_tracer.h, HybridEyeBuffers).
+  void recycle(std::array<EyeImage, 2>&& images);
   // The G-buffer of the last started frame (the denoiser's guides for that frame).
   const gl::GBufferPass& gbuffer() const { return pass_; }
 
  private:
   void workerLoop();
-  FinishedFrame trace(FinishedFrame job, const std::array<gl::GBufferImage, 2>& g) const;
+  FinishedFrame trace(FinishedFrame job, const std::array<gl::GBufferImage, 2>& g);
 
   const Scene& scene_;
   int width_, height_;
@@ -73,6 +77,8 @@ class ViewRenderer {
   // The traced job's G-buffer, handed back for the next read-back to reuse its storage
   // (gl::GBufferPass::read says why).
   std::array<gl::GBufferImage, 2> spare_;
+  std::array<EyeImage, 2> spareImages_;         // from recycle(), for the worker
+  std::array<HybridEyeBuffers, 2> eyeBuffers_;  // the worker's own
   std::exception_ptr failure_;
   bool working_ = false, quit_ = false;
   std::thread worker_;

@@ -7,16 +7,19 @@
 // untimed frame and replayed through rtcIntersect1 / rtcOccluded1). Best of --repeats.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "core/builtin_scenes.h"
 #include "core/stopwatch.h"
 #include "gl/context.h"
 #include "hybrid/hybrid_renderer.h"
+#include "trace/pixel_estimate.h"
 #include "trace/primary_rays.h"
 
 namespace photovr {
@@ -47,12 +50,13 @@ double replayMs(const EmbreeScene& embree, const std::vector<RecordedRay>& rays)
 void measureHybrid(HybridRenderer& r, const Scene& s, int w, int h, int repeats, Row& row) {
   RayRecorder recorder;
   r.embree().setRecorder(&recorder);
-  r.render(eyesOf(s, w, h, 0), 2, 0, nullptr);  // warm-up (shader JIT) and ray recording
+  // Warm-up (shader JIT, the first touch of the storage every frame reuses), ray recording.
+  r.recycle(r.render(eyesOf(s, w, h, 0), 2, 0, nullptr));
   r.embree().setRecorder(nullptr);
   const std::vector<RecordedRay> rays = recorder.take();
   for (int k = 0; k < repeats; ++k) {
     HybridFrameTimes t;
-    r.render(eyesOf(s, w, h, uint32_t(k)), 2, uint32_t(k), &t);
+    r.recycle(r.render(eyesOf(s, w, h, uint32_t(k)), 2, uint32_t(k), &t));
     if (t.totalMs() < row.hybridFrameMs) row.hybridFrameMs = t.totalMs(), row.hybrid = t;
     row.hybridRays = t.rays;
     row.rawHybridMs =
@@ -65,14 +69,18 @@ void measureHybrid(HybridRenderer& r, const Scene& s, int w, int h, int repeats,
 }
 
 void measurePt(const TraceContext& ctx, const Scene& s, int w, int h, int repeats, Row& row) {
+  std::array<EyeImage, 2> last;  // traced into, touched once untimed as the hybrid's warm-up
+  for (int e = 0; e < 2; ++e) allocateEyeImage(last[e], w, h);
   for (int k = 0; k < repeats; ++k) {
     const auto eyes = eyesOf(s, w, h, uint32_t(k));
     double primary = 0.0;
     for (int e = 0; e < 2; ++e) primary += timePrimaryRays(s, ctx.embree, eyes[e]).milliseconds;
     const auto t0 = Clock::now();
     uint64_t rays = 0;
-    for (int e = 0; e < 2; ++e)
-      rays += renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(k)).rays;
+    for (int e = 0; e < 2; ++e) {
+      last[e] = renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(k), std::move(last[e]));
+      rays += last[e].rays;
+    }
     const double ms = msSince(t0);
     row.ptFrameMs = std::min(row.ptFrameMs, ms);
     row.ptPrimaryMs = std::min(row.ptPrimaryMs, primary);

@@ -23,6 +23,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/builtin_scenes.h"
@@ -142,7 +143,7 @@ Row measure(const std::string& name, const Scene& scene, int threads, const Opti
 
   RayRecorder recorder;  // untimed render: records the rays and warms the caches
   embree.setRecorder(opt.renderOnly ? nullptr : &recorder);
-  const EyeImage img = renderPathTraced(ctx, cam, 0, 0);
+  EyeImage img = renderPathTraced(ctx, cam, 0, 0);
   embree.setRecorder(nullptr);
   row.imageHash = hashColors(img.color);
   const Replays replays(scene, embree, recorder.take());
@@ -152,7 +153,7 @@ Row measure(const std::string& name, const Scene& scene, int threads, const Opti
   row.intersectRays = opt.renderOnly ? img.rays : replays.intersect.size();
   row.occludedRays = opt.renderOnly ? 0 : replays.occluded.size();
   timeAll(
-      row, [&] { renderPathTraced(ctx, cam, 0, 0); }, replays, opt.repeats);
+      row, [&] { img = renderPathTraced(ctx, cam, 0, 0, std::move(img)); }, replays, opt.repeats);
   return row;
 }
 

@@ -35,7 +35,8 @@ std::array<EyeImage, 2> HybridRenderer::trace(
   }
   for (int e = 0; e < eyeCount; ++e) {
     HybridEyeStats s;
-    out[e] = traceFromGBuffer(ctx_, g[e], eyes[e], uint32_t(e), frame, sppMaps[e], &s);
+    out[e] =
+        traceFromGBuffer(ctx_, g[e], eyes[e], uint32_t(e), frame, sppMaps[e], &s, &eyeBuffers_[e]);
     t.rebuildMs += s.rebuildMs;
     t.traceMs += s.traceMs;
     t.outsideHits += s.outsideHits;
@@ -62,6 +63,11 @@ std::array<EyeImage, 2> HybridRenderer::render(
   return out;
 }
 
+void HybridRenderer::recycle(std::array<EyeImage, 2>&& images) {
+  for (int e = 0; e < 2; ++e)
+    if (!images[e].color.empty()) eyeBuffers_[e].image = std::move(images[e]);
+}
+
 void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eyeCount,
                                     bool pipelined, const FrameFn& onFrame,
                                     HybridFrameTimes* totals) {
@@ -71,6 +77,7 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
       HybridFrameTimes t;
       auto images = render(cameras(uint32_t(f)), eyeCount, uint32_t(f), &t);
       onFrame(uint32_t(f), images);
+      recycle(std::move(images));
       sum.gbufferMs += t.gbufferMs, sum.readbackMs += t.readbackMs;
       sum.rebuildMs += t.rebuildMs, sum.traceMs += t.traceMs, sum.refitMs += t.refitMs;
     }
@@ -92,6 +99,7 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
       sum.gbufferMs += msBetween(t0, Clock::now());
       auto images = trace(gbuffers_, current, eyeCount, uint32_t(f), sum, {});
       onFrame(uint32_t(f), images);
+      recycle(std::move(images));
       current = next;
     }
   }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <functional>
 #include <memory>
 
@@ -47,6 +48,11 @@ class HybridRenderer {
   void renderSequence(const CameraFn& cameras, int frames, int eyeCount, bool pipelined,
                       const FrameFn& onFrame, HybridFrameTimes* totals);
 
+  // Hands a frame's images back when the caller is done with them: the next frame is traced
+  // into their storage instead of fresh memory (hybrid_tracer.h, HybridEyeBuffers).
+  // renderSequence does it after each onFrame.
+  void recycle(std::array<EyeImage, 2>&& images);
+
   const gl::GBufferPass& gbuffer() const { return pass_; }
   const EmbreeScene& embree() const { return embree_; }
   EmbreeScene& embree() { return embree_; }  // e.g. to attach a RayRecorder (bench/)
@@ -57,7 +63,8 @@ class HybridRenderer {
   const Scene& scene_;
   gl::SceneGpu gpu_;
   gl::GBufferPass pass_;
-  std::array<gl::GBufferImage, 2> gbuffers_;  // the last read-back, its storage reused
+  std::array<gl::GBufferImage, 2> gbuffers_;    // the last read-back, its storage reused
+  std::array<HybridEyeBuffers, 2> eyeBuffers_;  // the tracer's, likewise (see recycle())
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;

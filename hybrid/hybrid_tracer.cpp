@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <limits>
+#include <utility>
 
 #include "core/stopwatch.h"
 #include "hybrid/hit_rebuild.h"
@@ -21,11 +22,14 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
                           uint32_t eye, uint32_t frame, const std::vector<uint16_t>* sppMap,
-                          HybridEyeStats* stats) {
-  EyeImage img;
-  allocateEyeImage(img, g.width, g.height);
+                          HybridEyeStats* stats, HybridEyeBuffers* reuse) {
+  HybridEyeBuffers local;
+  HybridEyeBuffers& buffers = reuse ? *reuse : local;
+  EyeImage& img = buffers.image;
+  allocateEyeImage(img, g.width, g.height);  // zeroes it, in place when it has the size
   const size_t n = size_t(g.width) * g.height;
-  std::vector<RebuiltHit> hits(n);
+  std::vector<RebuiltHit>& hits = buffers.hits;
+  hits.assign(n, RebuiltHit{});
   std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0};
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const auto t0 = Clock::now();
@@ -83,7 +87,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     stats->tracedPixels = traced;
     stats->skyRayHits = skyHits;
   }
-  return img;
+  return std::move(img);
 }
 
 }  // namespace photovr

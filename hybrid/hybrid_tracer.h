@@ -8,6 +8,7 @@
 
 #include "core/camera.h"
 #include "gl/gbuffer.h"
+#include "hybrid/hit_rebuild.h"
 #include "trace/path_tracer.h"
 
 namespace photovr {
@@ -26,8 +27,18 @@ struct HybridEyeStats {
 // hidden-area mask with 0 = not traced), in G-buffer order; null = ctx.settings' uniform
 // count. Rows bottom-up like the G-buffer. Fills color, the AOVs and the demodulated
 // diffuse/specular denoiser inputs.
+//
+// 'reuse': storage kept from frame to frame, or null. The traced image is built in
+// reuse->image (give the returned image back there when done with it) and the rebuilt hits
+// in reuse->hits: at 960x1080 the two are ~190 MB per eye, whose first touch as fresh
+// memory cost ~640 ms per eye here (docs/ARCHITECTURE.md, "Memory reuse").
+struct HybridEyeBuffers {
+  EyeImage image;
+  std::vector<RebuiltHit> hits;
+};
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuffer,
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,
-                          const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats);
+                          const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats,
+                          HybridEyeBuffers* reuse = nullptr);
 
 }  // namespace photovr

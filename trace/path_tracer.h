@@ -65,8 +65,10 @@ struct EyeImage {
 };
 
 // Pure path tracing of one eye: every sample of a pixel starts at that pixel's jittered
-// position for this frame (camera.jitter), as the rasterizer's does.
+// position for this frame (camera.jitter), as the rasterizer's does. 'reuse': an earlier
+// frame's image, done with, to trace into instead of fresh memory (whose first touch costs
+// ~300 ms per 960x1080 image here, docs/ARCHITECTURE.md, "Memory reuse"), as the hybrid's.
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& camera, uint32_t eye,
-                          uint32_t frame);
+                          uint32_t frame, EyeImage reuse = {});
 
 }  // namespace photovr

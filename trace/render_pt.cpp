@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <utility>
 
 #include "trace/path_tracer.h"
 #include "trace/pixel_estimate.h"
@@ -43,8 +44,8 @@ void tracePixel(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uin
 }  // namespace
 
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye,
-                          uint32_t frame) {
-  EyeImage img;
+                          uint32_t frame, EyeImage reuse) {
+  EyeImage img = std::move(reuse);
   allocateEyeImage(img, cam.width, cam.height);
   std::atomic<uint64_t> rays{0}, rejected{0};
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, kTile, 0, cam.width, kTile),
