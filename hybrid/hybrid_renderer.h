@@ -3,9 +3,9 @@
 #pragma once
 
 #include <array>
-#include <utility>
 #include <functional>
 #include <memory>
+#include <utility>
 
 #include "core/camera.h"
 #include "core/scene.h"
