@@ -1,6 +1,7 @@
 #include "gl/timewarp.h"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -66,8 +67,8 @@ Timewarp::Timewarp(const LensParams& lens, int eyeWidth, int eyeHeight,
 Timewarp::~Timewarp() {
   const GLuint t[] = {lensTable_, tileRange_, tileBound_, eyeColor_, eyeDepth_};
   api::DeleteTextures(5, t);
-  const GLuint b[] = {uniforms_, stats_};
-  api::DeleteBuffers(2, b);
+  const GLuint b[] = {uniforms_, stats_, lensGroups_};
+  api::DeleteBuffers(lensGroups_ ? 3 : 2, b);
   api::DeleteSamplers(1, &linearSampler_);
 }
 
@@ -86,6 +87,40 @@ void Timewarp::buildLensTable(const LensParams& lens, const std::array<FovTangen
   }
   api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   api::DeleteBuffers(1, &buffer);
+  // The pixels each eye's lens shows: the panel mode's count of the outputs it sorts, and
+  // the groups it computes.
+  const std::vector<float> redScale =
+      readTextureLayer<float>(lensTable_, GL_BLUE, GL_FLOAT, panelWidth_, panelHeight_, 0);
+  lensSees_.resize(redScale.size());
+  for (size_t i = 0; i < redScale.size(); ++i) {
+    lensSees_[i] = redScale[i] > 0.0f;
+    if (lensSees_[i]) ++lensVisible_[int(i % size_t(panelWidth_)) >= panelWidth_ / 2];
+  }
+}
+
+bool Timewarp::groupSees(int rotation, int outWidth, int outHeight, int gx, int gy) const {
+  const int g = COMP_TW_GROUP;
+  for (int y = gy * g; y < std::min((gy + 1) * g, outHeight); ++y)
+    for (int x = gx * g; x < std::min((gx + 1) * g, outWidth); ++x) {
+      const glm::ivec2 p = panelSourceTexel(rotation, panelWidth_, panelHeight_, x, y);
+      if (lensSees_[size_t(p.y) * size_t(panelWidth_) + size_t(p.x)]) return true;
+    }
+  return false;
+}
+
+void Timewarp::buildLensGroups(const PanelOutput& out) {
+  std::vector<uint32_t> list;
+  const int g = COMP_TW_GROUP;
+  for (int gy = 0; gy * g < out.height(); ++gy)
+    for (int gx = 0; gx * g < out.width(); ++gx)
+      if (groupSees(out.rotation(), out.width(), out.height(), gx, gy))
+        list.push_back(uint32_t(gx) | uint32_t(gy) << 16);
+  if (lensGroups_ != 0) api::DeleteBuffers(1, &lensGroups_);
+  api::CreateBuffers(1, &lensGroups_);
+  api::NamedBufferStorage(lensGroups_, GLsizeiptr(std::max<size_t>(list.size(), 1) * 4),
+                          list.empty() ? nullptr : list.data(), 0);
+  lensGroupCount_ = int(list.size());
+  lensGroupRotation_ = out.rotation();
 }
 
 void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
@@ -143,11 +178,16 @@ void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
   if (out.panelWidth() != panelWidth_ || out.panelHeight() != panelHeight_)
     throw UsageError("timewarp: the panel output is not " + std::to_string(panelWidth_) + "x" +
                      std::to_string(panelHeight_));
+  if (out.rotation() != lensGroupRotation_) buildLensGroups(out);
   prepare(colorArray, depthArray, from, to, 2, exposure, out.rotation());
+  counted_ = lensVisible_;
+  const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  api::ClearTexImage(out.texture(), 0, GL_RGBA, GL_FLOAT, black);
   panelProgram_.use();
   api::BindTextureUnit(COMP_TW_LUT, lensTable_);
   api::BindImageTexture(COMP_TW_I_OUT, out.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-  api::DispatchCompute(groups(out.width(), COMP_TW_GROUP), groups(out.height(), COMP_TW_GROUP), 1);
+  api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_GROUPS, lensGroups_);
+  if (lensGroupCount_ > 0) api::DispatchCompute(GLuint(lensGroupCount_), 1, 1);
   api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                      GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                      GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -158,6 +198,7 @@ void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
                        const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
                        int eyeCount) {
   prepare(colorArray, depthArray, from, to, eyeCount, 1.0f, 0);
+  counted_ = {eyeWidth_ * eyeHeight_, eyeCount > 1 ? eyeWidth_ * eyeHeight_ : 0};
   eyeProgram_.use();
   api::BindImageTexture(COMP_TW_I_OUT, eyeColor_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   api::BindImageTexture(COMP_TW_I_DEPTH, eyeDepth_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -181,8 +222,8 @@ ReprojectStats Timewarp::stats(int eye) const {
   api::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t counts[8] = {};
   api::GetNamedBufferSubData(stats_, 0, sizeof counts, counts);
-  const uint32_t* c = counts + 4 * eye;  // uncovered, filled, reprojected (timewarp.comp)
-  return {int(c[2]), int(c[1]), int(c[0])};
+  const uint32_t* c = counts + 4 * eye;  // uncovered, filled (timewarp.comp countOrigin)
+  return {counted_[size_t(eye)] - int(c[0]) - int(c[1]), int(c[1]), int(c[0])};
 }
 
 }  // namespace photovr::gl

@@ -68,12 +68,21 @@ class Timewarp {
                const std::array<EyeCamera, 2>& to, int eyeCount, float exposure, int rotation);
   void unbindSamplers();
   void buildLensTable(const LensParams& lens, const std::array<FovTangents, 2>& eyeFov);
+  // The list of output groups (COMP_TW_GROUP squared texels) showing a pixel the lens sees,
+  // for out's rotation: the panel pass computes those and clears the rest.
+  void buildLensGroups(const PanelOutput& out);
+  bool groupSees(int rotation, int outWidth, int outHeight, int gx, int gy) const;
 
   int eyeWidth_, eyeHeight_, panelWidth_, panelHeight_;
   glm::ivec2 tiles_;
   TimewarpParams params_;
   Program panelProgram_, eyeProgram_, tileProgram_;
   unsigned uniforms_ = 0, stats_ = 0, linearSampler_ = 0;
+  std::vector<bool> lensSees_;        // per landscape panel texel, as stored
+  std::array<int, 2> lensVisible_{};  // panel pixels each eye's lens shows
+  unsigned lensGroups_ = 0;           // SSBO of buildLensGroups' list
+  int lensGroupCount_ = 0, lensGroupRotation_ = -1;
+  std::array<int, 2> counted_{};  // outputs the last run sorted by origin, per eye
   unsigned lensTable_ = 0, tileRange_ = 0, tileBound_ = 0, eyeColor_ = 0, eyeDepth_ = 0;
 };
 

@@ -57,7 +57,8 @@ struct DistortUniforms {
 
 // Timewarp (timewarp*.comp, gl/timewarp.h): bindings.
 #define COMP_TW_BINDING 9  // TimewarpUniforms
-#define COMP_TW_STATS 10   // SSBO: per eye reprojected, filled, uncovered (uint x 4 x 2)
+#define COMP_TW_STATS 10   // SSBO: per eye uncovered, filled outputs (uint x 4 x 2)
+#define COMP_TW_GROUPS 11  // SSBO: panel mode's groups, x | y << 16 (in groups) of each
 #define COMP_TW_COLOR 0    // A's colour (2-layer array, bilinear sampler)
 #define COMP_TW_DEPTH 1    // A's reversed-Z depth (2-layer array)
 #define COMP_TW_TILES 2    // dilated tile maxima of A's depth (2-layer array)

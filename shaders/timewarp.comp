@@ -31,6 +31,9 @@ layout(binding = COMP_TW_DEPTH) uniform sampler2DArray aDepth;
 layout(binding = COMP_TW_TILES) uniform sampler2DArray tiles;
 #ifdef TIMEWARP_PANEL
 layout(binding = COMP_TW_LUT) uniform sampler2D lensTable;
+// The groups of output texels the lens shows any pixel of (Timewarp::lensGroups): the rest
+// of the panel is cleared to black, not computed.
+layout(std430, binding = COMP_TW_GROUPS) readonly buffer LensGroups { uint lensGroups[]; };
 layout(rgba8, binding = COMP_TW_I_OUT) writeonly uniform image2D panelOut;
 #else
 layout(rgba16f, binding = COMP_TW_I_OUT) writeonly uniform image2DArray eyeOut;
@@ -97,11 +100,13 @@ Warp warpToA(int e, vec2 tanB, out float qz) {
   } else {
     float fa = rhoA - dA, fb = rhoB - dB;
     rho = fa > fb ? mix(rhoA, rhoB, fa / (fa - fb)) : dB;
-    for (int k = 0; k < 2; ++k) {  // fixed-point steps onto the surface's own depth there
-      float d = rhoAt(p0 + rho * dp, e);
-      if (abs(d - rho) > rho * u.params.x) break;
-      rho = d;
-    }
+    // Two fixed-point steps onto the surface's own depth there, each taken only while the
+    // depth found is within the ratio of the ray's (written out: a loop costs llvmpipe more).
+    float d = rhoAt(p0 + rho * dp, e);
+    bool onSurface = abs(d - rho) <= rho * u.params.x;
+    rho = onSurface ? d : rho;
+    d = rhoAt(p0 + rho * dp, e);
+    rho = onSurface && abs(d - rho) <= rho * u.params.x ? d : rho;
     result = Warp(p0 + rho * dp, rho, kReprojected, rhoHi <= rhoLo * (1.0 + u.params.x));
   }
   if (any(lessThan(result.px, vec2(0.0))) || any(greaterThan(result.px, vec2(u.size.xy))))
@@ -109,50 +114,46 @@ Warp warpToA(int e, vec2 tanB, out float qz) {
   return result;
 }
 
-// Per-eye counts of the outputs' origins: one shared-memory tally per group, then one
-// atomic per origin into the buffer. Called by every invocation (it holds barriers).
-shared uint groupCounts[6];
+// Per-eye counts of the outputs that are not re-projected, one atomic each: they are the
+// few (the re-projected count is the rest of the pixels counted, Timewarp::stats). A
+// per-group tally behind two barriers cost more than the atomics it saved.
 void countOrigin(bool counted, int eye, int origin) {
-  uint i = gl_LocalInvocationIndex;
-  if (i < 6u) groupCounts[i] = 0u;
-  barrier();
-  if (counted) atomicAdd(groupCounts[eye * 3 + origin], 1u);
-  barrier();
-  if (i < 6u && groupCounts[i] != 0u) atomicAdd(counts[(i / 3u) * 4u + i % 3u], groupCounts[i]);
+  if (counted && origin != kReprojected) atomicAdd(counts[eye * 4 + origin], 1u);
 }
 
 vec4 bilinear(vec2 px, int e) {
   return texture(aColor, vec3(px / vec2(u.size.xy), float(e)));
 }
 
-// The bilinear taps around px that lie on the surface at 1 / distance rho (textureGather
-// order: (0,1), (1,1), (1,0), (0,0) from the lower-left tap), as the grid re-projection's
-// fragment stage does it: taps across a silhouette would bleed the other surface's colour.
-// Gathers at the centre of the 2x2 footprint, so that the footprint is floor(px - 0.5)'s
-// whatever the sampler's rounding of a coordinate on a texel centre.
+// The centre of px's 2x2 bilinear footprint, where the gathers sample, so that the
+// footprint is floor(px - 0.5)'s whatever the sampler's rounding of a coordinate on a
+// texel centre.
 vec3 footprintCentre(vec2 px, int e) {
   return vec3((floor(px - 0.5) + 1.0) / vec2(u.size.xy), float(e));
 }
 
+// The bilinear weights of the taps around px (textureGather order: (0,1), (1,1), (1,0),
+// (0,0) from the lower-left tap) that lie on the surface at 1 / distance rho, renormalised,
+// as the grid re-projection's fragment stage does it: taps across a silhouette would bleed
+// the other surface's colour. The plain bilinear weights where no tap is on it (sub-pixel
+// features).
 vec4 surfaceWeights(vec2 px, int e, float rho, out bool allSame) {
-  vec3 uv = footprintCentre(px, e);
-  vec4 d = max(textureGather(aDepth, uv, 0), 0.0) / u.eye[e].aPixel.z;
+  vec4 d = max(textureGather(aDepth, footprintCentre(px, e), 0), 0.0) / u.eye[e].aPixel.z;
   vec4 lo = min(d, vec4(rho)), hi = max(d, vec4(rho));
   bvec4 same = lessThanEqual(hi, lo * (1.0 + u.params.x));
   allSame = all(same);
   vec2 f = fract(px - 0.5);
-  return vec4(same) * vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+  vec4 plain = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+  vec4 weights = vec4(same) * plain;
+  float sum = dot(weights, vec4(1.0));
+  return sum < 1e-6 ? plain : weights / sum;
 }
 
-// One channel of A's colour at px from the surface taps (bilinear where all four agree).
-float surfaceChannel(vec2 px, int e, vec4 weights, int channel) {
-  float sum = dot(weights, vec4(1.0));
-  if (sum < 1e-6) return bilinear(px, e)[channel];  // no tap on it (sub-pixel features)
+// A's colour at px from the taps 'weights' gives (surfaceWeights).
+vec3 surfaceColor(vec2 px, int e, vec4 weights) {
   vec3 uv = footprintCentre(px, e);
-  vec4 taps = channel == 0 ? textureGather(aColor, uv, 0)
-                           : (channel == 1 ? textureGather(aColor, uv, 1)
-                                           : textureGather(aColor, uv, 2));
-  return dot(weights, taps) / sum;
+  return vec3(dot(weights, textureGather(aColor, uv, 0)), dot(weights, textureGather(aColor, uv, 1)),
+              dot(weights, textureGather(aColor, uv, 2)));
 }
 
 #ifdef TIMEWARP_PANEL
@@ -173,7 +174,8 @@ vec2 clampToEyeBuffer(TimewarpEye w, vec2 t) {
 }
 
 void main() {
-  ivec2 o = ivec2(gl_GlobalInvocationID.xy);
+  uint group = lensGroups[gl_WorkGroupID.x];
+  ivec2 o = ivec2(group & 0xffffu, group >> 16u) * COMP_TW_GROUP + ivec2(gl_LocalInvocationID.xy);
   bool inside = all(lessThan(o, imageSize(panelOut)));
   ivec2 p = sourceTexel(o);
   int e = p.x >= u.size.z / 2 ? 1 : 0;
@@ -193,14 +195,13 @@ void main() {
       vec2 parallax = g.px - pixelAtInfinity(w, tG, qz);
       vec2 pR = pixelAtInfinity(w, clampToEyeBuffer(w, lens.xy * lens.z), qz) + parallax;
       vec2 pB = pixelAtInfinity(w, clampToEyeBuffer(w, lens.xy * lens.w), qz) + parallax;
-      bool oneSurface = g.continuous;
-      vec4 wt = vec4(1.0);
-      if (!oneSurface) wt = surfaceWeights(g.px, e, g.rho, oneSurface);
-      if (oneSurface)
-        c = vec3(bilinear(pR, e).r, bilinear(g.px, e).g, bilinear(pB, e).b);
-      else  // at a silhouette: the channels' few pixels apart are not worth a second search
-        c = vec3(surfaceChannel(g.px, e, wt, 0), surfaceChannel(g.px, e, wt, 1),
-                 surfaceChannel(g.px, e, wt, 2));
+      c = vec3(bilinear(pR, e).r, bilinear(g.px, e).g, bilinear(pB, e).b);
+      if (!g.continuous) {
+        bool oneSurface;
+        vec4 wt = surfaceWeights(g.px, e, g.rho, oneSurface);
+        // At a silhouette: the channels' few pixels apart are not worth a second search.
+        if (!oneSurface) c = surfaceColor(g.px, e, wt);
+      }
     } else if (origin == kFilled) {
       c = texelFetch(aColor, ivec3(g.px, e), 0).rgb;
     }
@@ -229,9 +230,7 @@ void main() {
   float depth = 0.0;
   if (g.origin != kUncovered) {
     bool oneSurface;
-    vec4 wt = surfaceWeights(g.px, e, g.rho, oneSurface);
-    vec3 surface = vec3(surfaceChannel(g.px, e, wt, 0), surfaceChannel(g.px, e, wt, 1),
-                        surfaceChannel(g.px, e, wt, 2));
+    vec3 surface = surfaceColor(g.px, e, surfaceWeights(g.px, e, g.rho, oneSurface));
     c = g.origin == kReprojected ? vec4(surface, COMP_VALID)
                                  : vec4(texelFetch(aColor, ivec3(g.px, e), 0).rgb, COMP_FILLED);
     // B's reversed-Z: znear_B / (B view distance), the distance from rho along B's ray.

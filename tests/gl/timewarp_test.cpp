@@ -14,6 +14,7 @@
 #include "gl/panel_output.h"
 #include "gl/timewarp.h"
 #include "hmd/lens.h"
+#include "shaders/compositor_shared.h"
 #include "tests/gl/gl_test_util.h"
 #include "tests/gl/two_plane_scene.h"
 
@@ -85,9 +86,17 @@ TEST(Timewarp, ReprojectionToANearbyPoseMatchesTheAnalyticImage) {
   gl::Timewarp t(smallPanel(), kW, kH, {kFov, kFov});
   checkNearbyPose("timewarp", 2, [&](const auto& in, const auto& from, const auto& to) {
     const auto out = runEyes(t, in, from, to);
-    for (int e = 0; e < 2; ++e) {
+    for (int e = 0; e < 2; ++e) {  // the counts are the outputs' origins (alpha)
+      gl::ReprojectStats origins;
+      for (const glm::vec4& c : out[e].color) {
+        origins.reprojected += c.a == float(COMP_VALID);
+        origins.filled += c.a == float(COMP_FILLED);
+        origins.uncovered += c.a == 0.0f;
+      }
       const gl::ReprojectStats s = t.stats(e);
-      EXPECT_EQ(s.reprojected + s.filled + s.uncovered, kW * kH);
+      EXPECT_EQ(s.reprojected, origins.reprojected);
+      EXPECT_EQ(s.filled, origins.filled);
+      EXPECT_EQ(s.uncovered, origins.uncovered);
     }
     return out;
   });
@@ -108,6 +117,7 @@ struct PanelDifference {
   double mean = 0.0;  // 8-bit levels, over the channels of lens-visible pixels
   int max = 0;
   int visible = 0;
+  int blackInOne = 0;  // pixels black in one panel only
 };
 
 // Over the pixels both panels show (black: outside the lens, or outside pose A's frustum;
@@ -117,6 +127,7 @@ PanelDifference compare(const std::vector<glm::u8vec4>& a, const std::vector<glm
   double sum = 0.0;
   const glm::u8vec4 black(0, 0, 0, 255);
   for (size_t i = 0; i < a.size(); ++i) {
+    d.blackInOne += (a[i] == black) != (b[i] == black);
     if (a[i] == black || b[i] == black) continue;
     ++d.visible;
     for (int c = 0; c < 3; ++c) {
@@ -160,6 +171,11 @@ TEST(Timewarp, PanelAtTheRenderedPoseIsTheDistortionChain) {
         "max %d levels\n",
         rotation, d.visible, d.mean, d.max);
     EXPECT_GT(d.visible, lens.hResolution * lens.vResolution / 2);
+    // The panel pass computes only the groups the lens shows and clears the rest: black
+    // exactly where the chain is. Every lens-visible pixel is counted, as re-projected.
+    EXPECT_EQ(d.blackInOne, 0);
+    for (int e = 0; e < 2; ++e) EXPECT_EQ(t.stats(e).filled + t.stats(e).uncovered, 0);
+    EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.visible);
     // Same tan-angles, same bilinear taps: the chain only rounds its intermediate panel to
     // half float (2^-11 relative), which moves an 8-bit sRGB value by at most one level.
     EXPECT_LE(d.max, 1);
