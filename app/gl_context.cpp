@@ -2,6 +2,8 @@
 
 #include <iostream>
 
+#include "core/huge_pages.h"
+
 namespace photovr::app {
 
 std::unique_ptr<gl::Context> createRenderContext(const std::string& backend) {
@@ -17,7 +19,8 @@ std::unique_ptr<gl::Context> createRenderContext(const std::string& backend) {
     }
   }
   std::cerr << "photovr: " << gl::backendName(ctx->backend()) << ", OpenGL " << ctx->version()
-            << ", " << ctx->renderer() << "\n";
+            << ", " << ctx->renderer() << (mallocUsesHugePages() ? "; malloc on huge pages" : "")
+            << "\n";
   return ctx;
 }
 

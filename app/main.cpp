@@ -5,7 +5,25 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/huge_pages.h"
 #include "gl/context.h"
+
+namespace {
+
+// The commands that render frames re-execute with malloc on huge pages (core/huge_pages.h);
+// the others, and --help, are not worth a second start-up.
+void hugePagesForFrames(int argc, char** argv, char** envp) {
+  const std::string command = argc >= 2 ? argv[1] : "";
+  for (int i = 2; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return;
+  if (command == "render" || command == "view" || command == "ab" || command == "reference" ||
+      command == "stress" || command == "bench")
+    photovr::useHugePagesForMalloc(argc, argv, envp);
+}
+
+}  // namespace
+
+PHOTOVR_PREINIT(hugePagesForFrames);
 
 namespace {
 

@@ -20,6 +20,7 @@
 
 #include "app/headset.h"
 #include "core/builtin_scenes.h"
+#include "core/huge_pages.h"
 #include "core/stopwatch.h"
 #include "gl/context.h"
 #include "gl/gbuffer.h"
@@ -27,6 +28,7 @@
 #include "hmd/lens_maps.h"
 #include "hybrid/hybrid_renderer.h"
 
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 

@@ -27,6 +27,7 @@
 #include "app/reference_cache.h"
 #include "app/view.h"
 #include "core/builtin_scenes.h"
+#include "core/huge_pages.h"
 #include "core/error.h"
 #include "core/error_metrics.h"
 #include "core/scene_transform.h"
@@ -34,6 +35,7 @@
 #include "hybrid/denoise_input.h"
 #include "hybrid/hybrid_renderer.h"
 
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 

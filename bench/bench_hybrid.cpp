@@ -16,12 +16,14 @@
 #include <utility>
 
 #include "core/builtin_scenes.h"
+#include "core/huge_pages.h"
 #include "core/stopwatch.h"
 #include "gl/context.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/pixel_estimate.h"
 #include "trace/primary_rays.h"
 
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 

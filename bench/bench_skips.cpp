@@ -23,10 +23,12 @@
 
 #include "app/sample_maps.h"
 #include "core/builtin_scenes.h"
+#include "core/huge_pages.h"
 #include "gl/context.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/convergence.h"
 
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 

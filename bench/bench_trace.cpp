@@ -27,9 +27,11 @@
 #include <vector>
 
 #include "core/builtin_scenes.h"
+#include "core/huge_pages.h"
 #include "core/camera.h"
 #include "trace/path_tracer.h"
 
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 

@@ -1,5 +1,7 @@
 // The photovr command line, run as a user would: exit codes, one-line errors, outputs.
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -103,6 +105,28 @@ TEST(Cli, RenderWritesEveryImageForBothEyes) {
     EXPECT_GT(d, 0.05f / 3.5f);
     EXPECT_LE(d, 1.0f);
   }
+}
+
+// Where the kernel gives huge pages on request only, photovr re-executes itself with
+// malloc asking for them (core/huge_pages.h) and says so, with its arguments intact;
+// PHOTOVR_HUGE_PAGES=0 keeps ordinary pages.
+TEST(Cli, MallocAsksForHugePagesWhereTheKernelWantsToBeAsked) {
+  std::ifstream policyFile("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string policy;
+  std::getline(policyFile, policy);
+  const bool onRequest = policy.find("[madvise]") != std::string::npos;
+  const std::string dir = tempDir("huge-pages");
+  const std::string render =
+      "render --mode gbuffer --scene cornell --backend osmesa --width 16 --height 18 --out " + dir;
+  const auto asked = runPhotovr(render, "env -u GLIBC_TUNABLES -u PHOTOVR_HUGE_PAGES");
+  ASSERT_EQ(asked.status, 0) << asked.output;
+  EXPECT_EQ(asked.output.find("malloc on huge pages") != std::string::npos, onRequest)
+      << "kernel policy: " << policy << "\n"
+      << asked.output;
+  EXPECT_EQ(readImageRGBA8(dir + "/gbuffer.png").width, 2 * 16);  // the arguments survived
+  const auto optedOut = runPhotovr(render, "env -u GLIBC_TUNABLES PHOTOVR_HUGE_PAGES=0");
+  ASSERT_EQ(optedOut.status, 0) << optedOut.output;
+  EXPECT_EQ(optedOut.output.find("malloc on huge pages"), std::string::npos) << optedOut.output;
 }
 
 TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {

@@ -8,8 +8,8 @@
 
 namespace photovr::testing {
 
-CommandResult runPhotovr(const std::string& args) {
-  const std::string cmd = std::string(PHOTOVR_BINARY) + " " + args + " 2>&1";
+CommandResult runPhotovr(const std::string& args, const std::string& prefix) {
+  const std::string cmd = prefix + " " + std::string(PHOTOVR_BINARY) + " " + args + " 2>&1";
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;

@@ -10,8 +10,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// 'args' is appended to the binary's path as is (shell syntax).
-CommandResult runPhotovr(const std::string& args);
+// 'args' is appended to the binary's path as is (shell syntax); 'prefix' goes before it
+// (e.g. "env -u NAME").
+CommandResult runPhotovr(const std::string& args, const std::string& prefix = "");
 
 std::string tempDir(const std::string& name);  // a fresh, empty folder for one test
 
