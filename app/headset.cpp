@@ -118,7 +118,10 @@ HeadsetCompositor::HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth
 void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
                             const std::array<EyeCamera, 2>& from,
                             const std::array<EyeCamera, 2>& to, float exposure, bool reproject) {
-  timewarp_.runPanel(colorArray, depthArray, from, reproject ? to : from, exposure, output_);
+  if (reproject)
+    timewarp_.runPanel(colorArray, depthArray, from, to, exposure, output_);
+  else
+    timewarp_.runPanelAsRendered(colorArray, from, exposure, output_);
 }
 
 void HeadsetCompositor::upload(int eye, const std::vector<glm::vec4>& color,

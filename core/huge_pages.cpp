@@ -13,7 +13,8 @@ namespace {
 constexpr const char* kTunable = "glibc.malloc.hugetlb=1";
 
 bool hasHugePageTunable(const char* tunables) {
-  return tunables != nullptr && std::string(tunables).find("glibc.malloc.hugetlb") != std::string::npos;
+  return tunables != nullptr &&
+         std::string(tunables).find("glibc.malloc.hugetlb") != std::string::npos;
 }
 
 // Plain POSIX reads: this runs before libstdc++'s own initialisers (PHOTOVR_PREINIT).

@@ -49,6 +49,8 @@ Timewarp::Timewarp(const LensParams& lens, int eyeWidth, int eyeHeight,
              (eyeHeight + COMP_TW_TILE - 1) / COMP_TW_TILE),
       params_(params),
       panelProgram_({{GL_COMPUTE_SHADER, "timewarp.comp"}}, {"TIMEWARP_PANEL"}),
+      asRenderedProgram_({{GL_COMPUTE_SHADER, "timewarp.comp"}},
+                         {"TIMEWARP_PANEL", "TIMEWARP_AS_RENDERED"}),
       eyeProgram_({{GL_COMPUTE_SHADER, "timewarp.comp"}}, {}),
       tileProgram_({{GL_COMPUTE_SHADER, "timewarp_tiles.comp"}}, {}) {
   if (eyeWidth < 1 || eyeHeight < 1) throw UsageError("timewarp: empty eye buffer");
@@ -123,19 +125,14 @@ void Timewarp::buildLensGroups(const PanelOutput& out) {
   lensGroupRotation_ = out.rotation();
 }
 
-void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
-                       const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
-                       int eyeCount, float exposure, int rotation) {
+void Timewarp::setUniforms(const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                           int eyeCount, float exposure, int rotation) {
   if (eyeCount < 1 || eyeCount > 2) throw UsageError("timewarp: eye count must be 1 or 2");
-  for (int e = 0; e < eyeCount; ++e) {
+  for (int e = 0; e < eyeCount; ++e)
     if (from[e].width != eyeWidth_ || from[e].height != eyeHeight_ || to[e].width != eyeWidth_ ||
         to[e].height != eyeHeight_)
       throw UsageError("timewarp: cameras of eye " + std::to_string(e) + " are not " +
                        std::to_string(eyeWidth_) + "x" + std::to_string(eyeHeight_));
-    if (from[e].zfar != 0.0f) throw UsageError("timewarp: pose A needs infinite reversed-Z");
-  }
-  if (!(params_.stepPixels > 0.0f) || params_.maxSteps < 1 || params_.maxSteps > 1024)
-    throw UsageError("timewarp: step must be positive and max steps in [1, 1024]");
   shared::TimewarpUniforms u{};
   for (int e = 0; e < eyeCount; ++e) u.eye[e] = eyeUniforms(from[e], to[e]);
   u.params = {params_.depthRatio, params_.stepPixels, float(params_.maxSteps), exposure};
@@ -146,7 +143,14 @@ void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
   const GLuint zero = 0;
   api::ClearNamedBufferData(stats_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_STATS, stats_);
+}
 
+void Timewarp::prepareSearch(unsigned depthArray, const std::array<EyeCamera, 2>& from,
+                             int eyeCount) {
+  for (int e = 0; e < eyeCount; ++e)
+    if (from[e].zfar != 0.0f) throw UsageError("timewarp: pose A needs infinite reversed-Z");
+  if (!(params_.stepPixels > 0.0f) || params_.maxSteps < 1 || params_.maxSteps > 1024)
+    throw UsageError("timewarp: step must be positive and max steps in [1, 1024]");
   // The search bounds: tile minima and maxima of A's depth, then their 3x3 extremes.
   tileProgram_.use();
   api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // clamp to edge for the tiles' gathers
@@ -160,11 +164,14 @@ void Timewarp::prepare(unsigned colorArray, unsigned depthArray,
                          GLuint(eyeCount));
     api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
-  api::BindTextureUnit(COMP_TW_COLOR, colorArray);
-  api::BindSampler(COMP_TW_COLOR, linearSampler_);
   api::BindTextureUnit(COMP_TW_DEPTH, depthArray);
   api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // for textureGather's clamp to edge
   api::BindTextureUnit(COMP_TW_TILES, tileBound_);
+}
+
+void Timewarp::bindColor(unsigned colorArray) {
+  api::BindTextureUnit(COMP_TW_COLOR, colorArray);
+  api::BindSampler(COMP_TW_COLOR, linearSampler_);
 }
 
 void Timewarp::unbindSamplers() {
@@ -175,15 +182,33 @@ void Timewarp::unbindSamplers() {
 void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
                         const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
                         float exposure, PanelOutput& out) {
+  checkPanel(out);
+  setUniforms(from, to, 2, exposure, out.rotation());
+  prepareSearch(depthArray, from, 2);
+  bindColor(colorArray);
+  drawPanel(panelProgram_, out);
+}
+
+void Timewarp::runPanelAsRendered(unsigned colorArray, const std::array<EyeCamera, 2>& at,
+                                  float exposure, PanelOutput& out) {
+  checkPanel(out);
+  setUniforms(at, at, 2, exposure, out.rotation());
+  bindColor(colorArray);
+  drawPanel(asRenderedProgram_, out);
+}
+
+void Timewarp::checkPanel(const PanelOutput& out) {
   if (out.panelWidth() != panelWidth_ || out.panelHeight() != panelHeight_)
     throw UsageError("timewarp: the panel output is not " + std::to_string(panelWidth_) + "x" +
                      std::to_string(panelHeight_));
   if (out.rotation() != lensGroupRotation_) buildLensGroups(out);
-  prepare(colorArray, depthArray, from, to, 2, exposure, out.rotation());
+}
+
+void Timewarp::drawPanel(const Program& program, PanelOutput& out) {
   counted_ = lensVisible_;
   const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   api::ClearTexImage(out.texture(), 0, GL_RGBA, GL_FLOAT, black);
-  panelProgram_.use();
+  program.use();
   api::BindTextureUnit(COMP_TW_LUT, lensTable_);
   api::BindImageTexture(COMP_TW_I_OUT, out.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
   api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_GROUPS, lensGroups_);
@@ -197,7 +222,9 @@ void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
 void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
                        const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
                        int eyeCount) {
-  prepare(colorArray, depthArray, from, to, eyeCount, 1.0f, 0);
+  setUniforms(from, to, eyeCount, 1.0f, 0);
+  prepareSearch(depthArray, from, eyeCount);
+  bindColor(colorArray);
   counted_ = {eyeWidth_ * eyeHeight_, eyeCount > 1 ? eyeWidth_ * eyeHeight_ : 0};
   eyeProgram_.use();
   api::BindImageTexture(COMP_TW_I_OUT, eyeColor_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -50,6 +50,11 @@ class Timewarp {
   // lens's panel size.
   void runPanel(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
                 const std::array<EyeCamera, 2>& to, float exposure, PanelOutput& out);
+  // The frame as rendered at 'at', no re-projection: the lens, the chromatic samples and
+  // the display transform only (the frame's depth is not read). Between the colour taps
+  // across a silhouette it blends, as the distortion chain does.
+  void runPanelAsRendered(unsigned colorArray, const std::array<EyeCamera, 2>& at, float exposure,
+                          PanelOutput& out);
   // Pose B's eye buffers instead of the panel (eyes [0, eyeCount)).
   void runEyes(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
                const std::array<EyeCamera, 2>& to, int eyeCount = 2);
@@ -64,8 +69,12 @@ class Timewarp {
   int eyeHeight() const { return eyeHeight_; }
 
  private:
-  void prepare(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
-               const std::array<EyeCamera, 2>& to, int eyeCount, float exposure, int rotation);
+  void setUniforms(const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                   int eyeCount, float exposure, int rotation);
+  void prepareSearch(unsigned depthArray, const std::array<EyeCamera, 2>& from, int eyeCount);
+  void bindColor(unsigned colorArray);
+  void checkPanel(const PanelOutput& out);
+  void drawPanel(const Program& program, PanelOutput& out);
   void unbindSamplers();
   void buildLensTable(const LensParams& lens, const std::array<FovTangents, 2>& eyeFov);
   // The list of output groups (COMP_TW_GROUP squared texels) showing a pixel the lens sees,
@@ -76,7 +85,7 @@ class Timewarp {
   int eyeWidth_, eyeHeight_, panelWidth_, panelHeight_;
   glm::ivec2 tiles_;
   TimewarpParams params_;
-  Program panelProgram_, eyeProgram_, tileProgram_;
+  Program panelProgram_, asRenderedProgram_, eyeProgram_, tileProgram_;
   unsigned uniforms_ = 0, stats_ = 0, linearSampler_ = 0;
   std::vector<bool> lensSees_;        // per landscape panel texel, as stored
   std::array<int, 2> lensVisible_{};  // panel pixels each eye's lens shows

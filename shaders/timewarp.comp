@@ -1,7 +1,8 @@
 // Timewarp: depth-based re-projection by an iterative backward search, for each output
 // pixel (Bowles et al. 2012, "Iterative Image Warping"; the same ray-against-depth-buffer
 // march as screen-space ray tracing). Two variants from this file:
-//   TIMEWARP_PANEL: the headset's whole compositor in one pass. For each texel of the
+//   TIMEWARP_PANEL: the headset's whole compositor in one pass (with TIMEWARP_AS_RENDERED
+//     the frame as rendered, the search compiled out). For each texel of the
 //     rotated panel: its display pixel, the lens table (timewarp_lut.comp) for the
 //     tan-angle pose B shows there, the search into pose A's colour + depth, the chromatic
 //     channels, exposure, PBR Neutral and sRGB (display_transform.glsl) -> RGBA8.
@@ -187,7 +188,13 @@ void main() {
     TimewarpEye w = u.eye[e];
     vec2 tG = clampToEyeBuffer(w, lens.xy);
     float qz;
+#ifdef TIMEWARP_AS_RENDERED
+    // Shown as rendered (B = A): the lens's tan-angle straight into A's image, on one
+    // surface as far as the taps go (plain bilinear, as the distortion chain).
+    Warp g = Warp(pixelAtInfinity(w, tG, qz), 0.0, kReprojected, true);
+#else
     Warp g = warpToA(e, tG, qz);
+#endif
     origin = g.origin;
     if (origin == kReprojected) {
       // Red and blue: their own rotation-only warp plus green's parallax (which varies

@@ -14,7 +14,7 @@ TEST(HugePages, AskedForWhereTheKernelGivesThemOnRequestOnly) {
   EXPECT_EQ(tunablesWithHugePages("", kOnRequest), "glibc.malloc.hugetlb=1");
   EXPECT_EQ(tunablesWithHugePages(nullptr, "[always] madvise never"), "");  // already given
   EXPECT_EQ(tunablesWithHugePages(nullptr, "always madvise [never]"), "");  // never given
-  EXPECT_EQ(tunablesWithHugePages(nullptr, ""), "");  // no THP in this kernel
+  EXPECT_EQ(tunablesWithHugePages(nullptr, ""), "");                        // no THP in this kernel
 }
 
 TEST(HugePages, KeepsOtherTunablesAndNeverAddsItTwice) {
