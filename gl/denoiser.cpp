@@ -1,5 +1,6 @@
 #include "gl/denoiser.h"
 
+#include <algorithm>
 #include <cassert>
 #include <chrono>
 
@@ -83,6 +84,10 @@ Denoiser::Denoiser(int w, int h, const DenoiseParams& params)
       atrous_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {}),
       atrousComposite_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}},
                        {"SVGF_COMPOSITE 1", "SVGF_RESOLVE_FOLLOWS 1"}),
+      atrousDiffuse_({{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, {"SVGF_SPECULAR_DONE 1"}),
+      atrousDiffuseComposite_(
+          {{GL_COMPUTE_SHADER, "svgf_atrous.comp"}},
+          {"SVGF_SPECULAR_DONE 1", "SVGF_COMPOSITE 1", "SVGF_RESOLVE_FOLLOWS 1"}),
       composite_({{GL_COMPUTE_SHADER, "svgf_composite.comp"}}, {}),
       resolve_({{GL_COMPUTE_SHADER, "svgf_resolve.comp"}}, {}) {
   for (GLuint& t : inputs_) t = makeCleared(GL_RGB32F, GL_RGB, GL_FLOAT, w, h);
@@ -275,7 +280,10 @@ void Denoiser::firefly(const unsigned in[2], const unsigned out[2]) {
 
 void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2]) {
   const bool last = iteration + 1 == params_.iterations;
-  const Program& program = last ? atrousComposite_ : atrous_;
+  // Past max(1, cap) steps no pixel's lobe footprint reaches (svgf_atrous.comp).
+  const bool specular = float(1 << iteration) <= std::max(1.0f, params_.specularMaxStep);
+  const Program& program = specular ? (last ? atrousComposite_ : atrous_)
+                                    : (last ? atrousDiffuseComposite_ : atrousDiffuse_);
   program.use();
   program.set("uStep", 1 << iteration);
   api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);

@@ -215,7 +215,9 @@ class Denoiser {
 
   int width_, height_;
   DenoiseParams params_;
-  Program temporal_, firefly_, atrous_, atrousComposite_, composite_, resolve_;
+  Program temporal_, firefly_, atrous_, atrousComposite_;
+  Program atrousDiffuse_, atrousDiffuseComposite_;  // steps past the specular cap
+  Program composite_, resolve_;
   unsigned uniforms_ = 0;
   unsigned inputs_[InCount] = {};
   // Ping-ponged by frame parity: [frame & 1] is written, the other read as "previous".

@@ -2,7 +2,8 @@
 // stopping §4.4, eqs. 3-5), both eyes in one dispatch. Diffuse and specular are filtered
 // side by side with their own variances; specular with its own (tighter) sigma_l and only
 // while the step fits the GGX lobe's footprint. With SVGF_COMPOSITE defined (the last
-// iteration) the result is also composited, saving a pass that would re-read it.
+// iteration) the result is also composited, saving a pass that would re-read it; with
+// SVGF_SPECULAR_DONE (steps beyond the footprint's cap) specular passes through.
 // Reads: colour + variance (RGBA16F x 2), geometry record (RGBA32UI), aux (RGBA16F).
 // Writes: colour + filtered variance (RGBA16F x 2) [+ the compositing outputs].
 #include "svgf_common.glsl"
@@ -50,8 +51,14 @@ void main() {
     // Specular lobe footprint: filter while the step is within 'footprint x GGX alpha'
     // pixels (alpha = roughness^2), at most the cap; mirrors keep their reflections (always
     // >= step 1). gl/denoiser.h gives the measurements behind both.
+#ifdef SVGF_SPECULAR_DONE
+    // A step past the cap (Denoiser::atrous): no pixel's specular is filtered any more, and
+    // the specular taps are compiled out (llvmpipe would pay for them even untaken).
+    const bool filterSpecular = false;
+#else
     float lobeSteps = min(params.display.z, params.display.y * aux.w * aux.w);
     bool filterSpecular = float(uStep) <= max(1.0, lobeSteps);
+#endif
     // §4.4 eq. (5): phi_l = sigma_l sqrt(g3x3(Var)) + epsilon (Falcor's 1e-10).
     vec2 phi = params.edge.zw * sqrt(prefilteredVariance(p)) + 1e-10;
     float ld = luminance(diffuse.rgb), ls = luminance(specular.rgb);
