@@ -64,7 +64,11 @@ void useHugePagesForMalloc(int, char** argv, char** envp) {
 }
 
 bool mallocUsesHugePages() {
-  return hasHugePageTunable(std::getenv("GLIBC_TUNABLES"));
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables == nullptr) return false;
+  const std::string t = tunables, key = "glibc.malloc.hugetlb=";
+  const size_t at = t.find(key);
+  return at != std::string::npos && at + key.size() < t.size() && t[at + key.size()] != '0';
 }
 
 }  // namespace photovr

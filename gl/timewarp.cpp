@@ -1,7 +1,7 @@
 #include "gl/timewarp.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 

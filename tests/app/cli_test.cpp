@@ -127,6 +127,11 @@ TEST(Cli, MallocAsksForHugePagesWhereTheKernelWantsToBeAsked) {
   const auto optedOut = runPhotovr(render, "env -u GLIBC_TUNABLES PHOTOVR_HUGE_PAGES=0");
   ASSERT_EQ(optedOut.status, 0) << optedOut.output;
   EXPECT_EQ(optedOut.output.find("malloc on huge pages"), std::string::npos) << optedOut.output;
+  // The user's own "no" is kept, and reported as such.
+  const auto refused =
+      runPhotovr(render, "env -u PHOTOVR_HUGE_PAGES GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+  ASSERT_EQ(refused.status, 0) << refused.output;
+  EXPECT_EQ(refused.output.find("malloc on huge pages"), std::string::npos) << refused.output;
 }
 
 TEST(Cli, MonoRenderWritesOneEyeWithTheRequestedAspect) {
