@@ -20,6 +20,7 @@
 
 #include "app/headset.h"
 #include "core/builtin_scenes.h"
+#include "core/error_metrics.h"
 #include "core/huge_pages.h"
 #include "core/stopwatch.h"
 #include "gl/context.h"
@@ -55,6 +56,12 @@ std::array<EyeCamera, 2> movedEyes(const Scene& s, int w, int h) {
   return app::headEyes(p, w, h, glm::vec2(0.0f));
 }
 
+std::array<glm::mat4, 2> viewProjections(const std::array<EyeCamera, 2>& eyes) {
+  std::array<glm::mat4, 2> vp;
+  for (int e = 0; e < 2; ++e) vp[e] = eyes[e].unjitteredProjection() * eyes[e].view();
+  return vp;
+}
+
 // Wall time and process CPU time of a pass (llvmpipe runs GL on the CPU, so CPU time is
 // the work; it stays put when something else shares the cores, wall time does not).
 struct PassTime {
@@ -62,8 +69,20 @@ struct PassTime {
   PassTime operator+(const PassTime& o) const { return {wall + o.wall, cpu + o.cpu}; }
 };
 
+// What a pass shows at a pose against the truth there: the distortion chain on the G-buffer
+// rendered at that pose (core/error_metrics.h panelDifference: 8-bit levels where both show
+// something).
+struct PoseError {
+  std::string pose;
+  PanelDifference stale;     // the frame as rendered at A, shown at B (no re-projection)
+  PanelDifference timewarp;  // the compositor
+  PanelDifference grid;      // the reference chain
+  double disoccluded = 0;    // fraction of the lens-visible pixels the timewarp filled or left
+};
+
 struct Timing {
   std::string scene;
+  std::vector<PoseError> errors;  // moved, turned
   PassTime gbuffer;
   PassTime timewarp, rotationOnly;          // the compositor (gl/timewarp.h), one pass
   PassTime asRendered;                      // the same without re-projection: its floor
@@ -105,8 +124,7 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
   const auto from = sceneEyes(scene, c.eyeW, c.eyeH, glm::vec2(0.0f));
   const auto to = movedEyes(scene, c.eyeW, c.eyeH);
   const auto turned = turnedEyes(scene, c.eyeW, c.eyeH);
-  std::array<glm::mat4, 2> vp;
-  for (int e = 0; e < 2; ++e) vp[e] = from[e].unjitteredProjection() * from[e].view();
+  const std::array<glm::mat4, 2> vp = viewProjections(from);
   // The G-buffer's own layers stand in for a rendered frame: base colour as colour and
   // its D32F depth (the scene's real depth: the search's cost depends on its parallax).
   const unsigned color = pass.texture(gl::GBufferTarget::BaseColor), depth = pass.depthTexture();
@@ -126,6 +144,34 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
   t.scene = name;
   t.gbuffer = best[0], t.timewarp = best[1], t.rotationOnly = best[2], t.asRendered = best[3];
   t.gridReproject = best[4], t.distort = best[5], t.output = best[6];
+  const auto panelOf = [&](const std::array<EyeCamera, 2>& at) {
+    pass.render(gpu, at, viewProjections(at));
+    distorter.run(color);
+    comp.output().run(distorter.panelTexture(), 1.0f);
+    return comp.output().read();
+  };
+  for (const auto& [pose, to] : {std::pair{"moved", to}, std::pair{"turned", turned}}) {
+    PoseError e;
+    e.pose = pose;
+    const auto truth = panelOf(to);
+    panelOf(from);  // back to the frame at A
+    comp.run(color, depth, from, to, 1.0f);
+    e.timewarp = panelDifference(comp.output().read(), truth);
+    int disoccluded = 0, visible = 0;
+    for (int eye = 0; eye < 2; ++eye) {
+      const gl::ReprojectStats st = comp.timewarp().stats(eye);
+      disoccluded += st.filled + st.uncovered;
+      visible += st.reprojected + st.filled + st.uncovered;
+    }
+    e.disoccluded = double(disoccluded) / std::max(visible, 1);
+    comp.run(color, depth, from, from, 1.0f, false);
+    e.stale = panelDifference(comp.output().read(), truth);
+    grid.run(color, depth, from, to);
+    distorter.run(grid.colorTexture());
+    comp.output().run(distorter.panelTexture(), 1.0f);
+    e.grid = panelDifference(comp.output().read(), truth);
+    t.errors.push_back(e);
+  }
   return t;
 }
 
@@ -255,6 +301,30 @@ std::vector<LensRow> lensStudy(const Config& c, bool layered) {
   return rows;
 }
 
+// The error each pass buys, per scene and head motion, printed and written to
+// bench_compositor_error.csv.
+void printErrors(const std::vector<Timing>& timings, const Config& c) {
+  std::printf(
+      "error at the new pose against the G-buffer rendered there (mean 8-bit levels over the "
+      "panel pixels both show; black in one: %% of the panel):\n");
+  std::printf("%-8s %-7s | %11s | %9s %11s %11s | %10s | %11s\n", "scene", "head", "as rendered",
+              "timewarp", "disoccluded", "black in one", "grid chain", "black in one");
+  std::ofstream csv(c.out + "/bench_compositor_error.csv");
+  csv << "scene,head,shown_pixels,as_rendered_levels,timewarp_levels,timewarp_max_levels,"
+         "disoccluded_fraction,timewarp_black_in_one,grid_chain_levels,grid_chain_black_in_one\n";
+  const double panel = double(c.panelW) * c.panelH;
+  for (const Timing& t : timings)
+    for (const PoseError& e : t.errors) {
+      std::printf("%-8s %-7s | %11.3f | %9.3f %10.2f%% %10.2f%% | %10.3f | %10.2f%%\n",
+                  t.scene.c_str(), e.pose.c_str(), e.stale.meanLevels, e.timewarp.meanLevels,
+                  100.0 * e.disoccluded, 100.0 * e.timewarp.blackInOne / panel, e.grid.meanLevels,
+                  100.0 * e.grid.blackInOne / panel);
+      csv << t.scene << ',' << e.pose << ',' << e.timewarp.shown << ',' << e.stale.meanLevels << ','
+          << e.timewarp.meanLevels << ',' << e.timewarp.maxLevels << ',' << e.disoccluded << ','
+          << e.timewarp.blackInOne << ',' << e.grid.meanLevels << ',' << e.grid.blackInOne << '\n';
+    }
+}
+
 Config parse(int argc, char** argv) {
   Config c;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -311,8 +381,9 @@ int run(int argc, char** argv) {
          "output_ms,chain_over_gbuffer,gbuffer_cpu_ms,timewarp_cpu_ms,chain_cpu_ms,"
          "timewarp_over_gbuffer_cpu,chain_over_gbuffer_cpu,as_rendered_ms,"
          "as_rendered_over_gbuffer\n";
+  std::vector<Timing> timings;
   for (const std::string& name : c.scenes) {
-    const Timing t = timeScene(name, c, layered);
+    const Timing& t = timings.emplace_back(timeScene(name, c, layered));
     const double fused = t.timewarp.wall / t.gbuffer.wall, chain = t.chain().wall / t.gbuffer.wall;
     const double fusedCpu = t.timewarp.cpu / t.gbuffer.cpu,
                  chainCpu = t.chain().cpu / t.gbuffer.cpu;
@@ -333,6 +404,7 @@ int run(int argc, char** argv) {
       "rendered: the frame at its own pose, the lens and display transform only; target: "
       "compositor <= 0.25 x gbuffer)\n",
       c.repeats);
+  printErrors(timings, c);
   std::ofstream mask(c.out + "/bench_compositor_mask.csv");
   mask << "eye,width,height,hidden_fraction\n";
   for (const MaskRow& m : hiddenFractions(c)) {
@@ -358,7 +430,8 @@ int run(int argc, char** argv) {
          << r.error << ',' << byTime << ',' << bySamples << '\n';
   }
   std::printf(
-      "wrote %s/bench_compositor.csv, bench_compositor_mask.csv, bench_compositor_lens.csv\n",
+      "wrote %s/bench_compositor.csv, bench_compositor_error.csv, bench_compositor_mask.csv, "
+      "bench_compositor_lens.csv\n",
       c.out.c_str());
   return 0;
 }

@@ -1,6 +1,8 @@
 #include "core/error_metrics.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "core/image_io.h"
 #include "core/tonemap.h"
@@ -40,6 +42,25 @@ double psnrDisplay(const std::vector<glm::vec3>& image, const std::vector<glm::v
   }
   const double mse = image.empty() ? 0.0 : sum / double(image.size());
   return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 99.0;  // 99 dB stands for identical
+}
+
+PanelDifference panelDifference(const std::vector<glm::u8vec4>& a,
+                                const std::vector<glm::u8vec4>& b) {
+  PanelDifference d;
+  double sum = 0.0;
+  const auto isBlack = [](const glm::u8vec4& p) { return p.r == 0 && p.g == 0 && p.b == 0; };
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    d.blackInOne += isBlack(a[i]) != isBlack(b[i]);
+    if (isBlack(a[i]) || isBlack(b[i])) continue;
+    ++d.shown;
+    for (int c = 0; c < 3; ++c) {
+      const int diff = std::abs(int(a[i][c]) - int(b[i][c]));
+      sum += diff;
+      d.maxLevels = std::max(d.maxLevels, diff);
+    }
+  }
+  d.meanLevels = d.shown > 0 ? sum / (3.0 * d.shown) : 0.0;
+  return d;
 }
 
 }  // namespace photovr

@@ -21,4 +21,16 @@ double relMse(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>&
 double psnrDisplay(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& reference,
                    float exposure = 1.0f);
 
+// Two display images of the headset's panel (8-bit RGBA, equal size) compared where both
+// show something: black is what a panel shows outside the lens and where a frame holds
+// nothing, so it is left out of the mean and counted apart.
+struct PanelDifference {
+  double meanLevels = 0.0;  // mean |a - b| in 8-bit levels over the RGB of the shown pixels
+  int maxLevels = 0;
+  int shown = 0;       // pixels neither image has black
+  int blackInOne = 0;  // pixels black in exactly one image
+};
+PanelDifference panelDifference(const std::vector<glm::u8vec4>& a,
+                                const std::vector<glm::u8vec4>& b);
+
 }  // namespace photovr

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/camera.h"
+#include "core/error_metrics.h"
 #include "gl/compositor.h"
 #include "gl/eye_arrays.h"
 #include "gl/panel_output.h"
@@ -113,33 +114,6 @@ std::array<EyeCamera, 2> dk2Eyes(const Pose& pose, int w, int h) {
   return cams;
 }
 
-struct PanelDifference {
-  double mean = 0.0;  // 8-bit levels, over the channels of lens-visible pixels
-  int max = 0;
-  int visible = 0;
-  int blackInOne = 0;  // pixels black in one panel only
-};
-
-// Over the pixels both panels show (black: outside the lens, or outside pose A's frustum;
-// the scene has no black).
-PanelDifference compare(const std::vector<glm::u8vec4>& a, const std::vector<glm::u8vec4>& b) {
-  PanelDifference d;
-  double sum = 0.0;
-  const glm::u8vec4 black(0, 0, 0, 255);
-  for (size_t i = 0; i < a.size(); ++i) {
-    d.blackInOne += (a[i] == black) != (b[i] == black);
-    if (a[i] == black || b[i] == black) continue;
-    ++d.visible;
-    for (int c = 0; c < 3; ++c) {
-      const int diff = std::abs(int(a[i][c]) - int(b[i][c]));
-      sum += diff;
-      d.max = std::max(d.max, diff);
-    }
-  }
-  d.mean = sum / (3.0 * std::max(d.visible, 1));
-  return d;
-}
-
 // The reference chain: eye buffers through the Distorter's bilinear pass, then PanelOutput.
 std::vector<glm::u8vec4> referencePanel(const gl::LensParams& lens, const EyeArrays& eyes, int w,
                                         int h, float exposure, int rotation) {
@@ -165,21 +139,22 @@ TEST(Timewarp, PanelAtTheRenderedPoseIsTheDistortionChain) {
     gl::Timewarp t(lens, w, h, dk2Fov());
     gl::PanelOutput out(lens.hResolution, lens.vResolution, rotation);
     t.runPanel(eyes.color(), eyes.depth(), cams, cams, 1.5f, out);
-    const PanelDifference d = compare(out.read(), referencePanel(lens, eyes, w, h, 1.5f, rotation));
+    const PanelDifference d =
+        panelDifference(out.read(), referencePanel(lens, eyes, w, h, 1.5f, rotation));
     std::printf(
         "timewarp panel vs distortion chain (rotation %d): %d visible pixels, mean %.3f, "
         "max %d levels\n",
-        rotation, d.visible, d.mean, d.max);
-    EXPECT_GT(d.visible, lens.hResolution * lens.vResolution / 2);
+        rotation, d.shown, d.meanLevels, d.maxLevels);
+    EXPECT_GT(d.shown, lens.hResolution * lens.vResolution / 2);
     // The panel pass computes only the groups the lens shows and clears the rest: black
     // exactly where the chain is. Every lens-visible pixel is counted, as re-projected.
     EXPECT_EQ(d.blackInOne, 0);
     for (int e = 0; e < 2; ++e) EXPECT_EQ(t.stats(e).filled + t.stats(e).uncovered, 0);
-    EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.visible);
+    EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.shown);
     // Same tan-angles, same bilinear taps: the chain only rounds its intermediate panel to
     // half float (2^-11 relative), which moves an 8-bit sRGB value by at most one level.
-    EXPECT_LE(d.max, 1);
-    EXPECT_LT(d.mean, 0.1);
+    EXPECT_LE(d.maxLevels, 1);
+    EXPECT_LT(d.meanLevels, 0.1);
   }
 }
 
@@ -194,17 +169,17 @@ TEST(Timewarp, PanelAsRenderedIsTheDistortionChain) {
   gl::Timewarp t(lens, w, h, dk2Fov());
   gl::PanelOutput out(lens.hResolution, lens.vResolution, 90);
   t.runPanelAsRendered(eyes.color(), cams, 1.5f, out);
-  const PanelDifference d = compare(out.read(), referencePanel(lens, eyes, w, h, 1.5f, 90));
+  const PanelDifference d = panelDifference(out.read(), referencePanel(lens, eyes, w, h, 1.5f, 90));
   std::printf(
       "timewarp panel as rendered vs distortion chain: %d visible pixels, mean %.3f, max %d "
       "levels\n",
-      d.visible, d.mean, d.max);
+      d.shown, d.meanLevels, d.maxLevels);
   // As at the rendered pose above: the chain's half-float panel moves a value by <= 1 level.
   EXPECT_EQ(d.blackInOne, 0);
-  EXPECT_GT(d.visible, lens.hResolution * lens.vResolution / 2);
-  EXPECT_LE(d.max, 1);
-  EXPECT_LT(d.mean, 0.1);
-  EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.visible);
+  EXPECT_GT(d.shown, lens.hResolution * lens.vResolution / 2);
+  EXPECT_LE(d.maxLevels, 1);
+  EXPECT_LT(d.meanLevels, 0.1);
+  EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.shown);
 }
 
 // Moved head: the timewarp's panel of the frame rendered at A against the distortion chain
@@ -223,10 +198,12 @@ TEST(Timewarp, PanelAtANewPoseShowsTheSceneThere) {
   gl::Timewarp t(lens, w, h, dk2Fov());
   gl::PanelOutput out(lens.hResolution, lens.vResolution, 90);
   t.runPanel(atA.color(), atA.depth(), from, to, 1.0f, out);
-  const PanelDifference moved = compare(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
+  const PanelDifference moved =
+      panelDifference(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
   // Without re-projection (A's frame shown as it was) for scale.
   t.runPanel(atA.color(), atA.depth(), from, from, 1.0f, out);
-  const PanelDifference stale = compare(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
+  const PanelDifference stale =
+      panelDifference(out.read(), referencePanel(lens, atB, w, h, 1.0f, 90));
   int disoccluded = 0, visible = 0;
   for (int e = 0; e < 2; ++e) {
     const gl::ReprojectStats s = t.stats(e);
@@ -237,12 +214,12 @@ TEST(Timewarp, PanelAtANewPoseShowsTheSceneThere) {
   std::printf(
       "timewarp panel at a moved pose vs the scene traced there: mean %.3f levels "
       "(stale frame %.3f); disoccluded %d of %d lens-visible pixels\n",
-      moved.mean, stale.mean, disoccluded, visible);
+      moved.meanLevels, stale.meanLevels, disoccluded, visible);
   // Measured: 0.88 levels against 2.86 for the stale frame. What remains is the resampling
   // of two pixel grids (each panel pixel interpolates A's texels, the reference B's) and
   // the disocclusions, filled from the background side instead of with what B sees.
-  EXPECT_LT(moved.mean, stale.mean / 2.5);
-  EXPECT_LT(moved.mean, 1.5);
+  EXPECT_LT(moved.meanLevels, stale.meanLevels / 2.5);
+  EXPECT_LT(moved.meanLevels, 1.5);
   EXPECT_GT(disoccluded, 0);
 }
 
