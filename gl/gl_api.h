@@ -102,7 +102,12 @@
   X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                             \
   X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                             \
   X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                       \
-  X(PFNGLBINDSAMPLERPROC, BindSampler)
+  X(PFNGLBINDSAMPLERPROC, BindSampler)                                   \
+  X(PFNGLCREATEQUERIESPROC, CreateQueries)                               \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                               \
+  X(PFNGLBEGINQUERYPROC, BeginQuery)                                     \
+  X(PFNGLENDQUERYPROC, EndQuery)                                         \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
 
 namespace photovr::gl::api {
 
