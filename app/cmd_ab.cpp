@@ -203,7 +203,7 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
 
 int runAb(const Args& args) {
   if (wantsHelp(args)) {
-    std::cout << kAbHelp << kViewHelp;
+    std::cout << kAbHelp << kHeadHelp << kEyesHelp;
     return 0;
   }
   const AbRequest a = parseAb(args, false);
@@ -249,7 +249,7 @@ int runAb(const Args& args) {
 
 int runReference(const Args& args) {
   if (wantsHelp(args)) {
-    std::cout << kReferenceHelp << kViewHelp;
+    std::cout << kReferenceHelp << kHeadHelp << kEyesHelp;
     return 0;
   }
   const AbRequest a = parseAb(args, true);

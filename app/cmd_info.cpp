@@ -1,4 +1,5 @@
 // photovr info / export-scene: what a scene contains, and built-in scenes as glTF.
+#include <filesystem>
 #include <iostream>
 
 #include "app/commands.h"
@@ -37,6 +38,9 @@ int runExportScene(const Args& args) {
   if (o.positional().size() != 2)
     throw UsageError("export-scene: expected NAME and an output .glb/.gltf path (see --help)");
   const std::string& name = o.positional()[0];
+  const std::string ext = std::filesystem::path(o.positional()[1]).extension().string();
+  if (ext != ".glb" && ext != ".gltf")
+    throw UsageError("export-scene: " + o.positional()[1] + ": expected a .glb or .gltf path");
   if (!isBuiltinScene(name)) makeBuiltinScene(name);  // throws the UsageError listing names
   const Scene scene = makeBuiltinScene(name);
   for (const std::string& w : writeGlb(scene, o.positional()[1]))

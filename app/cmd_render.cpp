@@ -105,7 +105,7 @@ void reportProgress(double fraction, double raysPerSecond, double secondsLeft) {
 
 int runRender(const Args& args) {
   if (wantsHelp(args)) {
-    std::cout << kRenderHelp << kViewHelp << kHmdRenderHelp;
+    std::cout << kRenderHelp << kHeadHelp << kEyesHelp << kHmdRenderHelp;
     return 0;
   }
   Args rest = args;

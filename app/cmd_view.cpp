@@ -120,7 +120,8 @@ ViewConfig parseViewConfig(Args args) {
   c.scene = loadSceneSpec(o.text("--scene", "atrium"));
   applyEnvironmentOption(c.scene, o.text("--env", ""));
   c.view = resolveView(c.scene, o);
-  if (!c.view.stereo) throw UsageError("view: --eyes mono is not a headset view");
+  if (!c.view.stereo || o.has("--fovy"))
+    throw UsageError("view: --eyes and --fovy are not headset options (the eyes are the DK2's)");
   c.view.head = recenterOnView(c.scene, c.view.head);
   return c;
 }
@@ -349,7 +350,7 @@ int runSession(ViewConfig& c) {
 
 int runView(const Args& args) {
   if (wantsHelp(args)) {
-    std::cout << kViewCommandHelp << kViewHelp;
+    std::cout << kViewCommandHelp << kHeadHelp;
     return 0;
   }
   ViewConfig config = parseViewConfig(args);

@@ -6,11 +6,13 @@
 
 namespace photovr::app {
 
-const char* const kViewHelp =
+const char* const kHeadHelp =
     "  --camera N|NAME        scene camera by index or name (default: the first, else a\n"
     "                         view framing the scene)\n"
     "  --look-from X,Y,Z      camera position (overrides the scene camera's)\n"
-    "  --look-at X,Y,Z        point to look at (overrides the orientation)\n"
+    "  --look-at X,Y,Z        point to look at (overrides the orientation)\n";
+
+const char* const kEyesHelp =
     "  --fovy DEG             vertical field of view for --eyes mono (1..179)\n"
     "  --eyes stereo|mono     stereo: both eyes around the camera, 63.5 mm IPD, DK2 FOV\n"
     "                         (default); mono: the camera's own symmetric frustum\n";
@@ -73,6 +75,8 @@ View resolveView(const Scene& scene, const Options& o) {
   }
   v.yfov = o.number("--fovy", v.yfov / kDegrees, 1.0f, 179.0f) * kDegrees;
   v.stereo = o.choice("--eyes", "stereo", {"stereo", "mono"}) == "stereo";
+  if (v.stereo && o.has("--fovy"))
+    throw UsageError("--fovy: only with --eyes mono (the stereo eyes have the DK2's FOV)");
   return v;
 }
 

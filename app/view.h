@@ -25,8 +25,10 @@ View resolveView(const Scene& scene, const Options& options);
 // The two eye cameras of frame 'frame' (Halton jitter). Mono gives the same camera twice.
 std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame);
 
-// The options every rendering command accepts for the camera, with their help text.
-extern const char* const kViewHelp;
+// The options every rendering command accepts for the camera, with their help text: the
+// head's placement (all commands) and the eyes (not `view`, whose eyes are the headset's).
+extern const char* const kHeadHelp;
+extern const char* const kEyesHelp;
 extern const std::set<std::string> kViewOptions;
 
 }  // namespace photovr::app

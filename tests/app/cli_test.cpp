@@ -46,6 +46,9 @@ TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
       {"render --camera 7 --scene cornell", "--camera: '7' is not a camera of this scene"},
       {"info", "expected exactly one SCENE"},
       {"export-scene nosuch /tmp/x.glb", "unknown built-in scene 'nosuch'"},
+      {"export-scene cornell /tmp/x.obj", "/tmp/x.obj: expected a .glb or .gltf path"},
+      {"render --fovy 40", "--fovy: only with --eyes mono"},
+      {"view --scene cornell --eyes mono", "view: --eyes and --fovy are not headset options"},
   };
   for (const auto& c : cases) {
     const auto r = runPhotovr(c[0]);
@@ -53,6 +56,15 @@ TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
     EXPECT_NE(r.output.find(c[1]), std::string::npos) << c[0] << "\n" << r.output;
     EXPECT_EQ(lineCount(r.output), 1u) << c[0] << "\n" << r.output;
   }
+}
+
+// view's eyes are the headset's: its help offers no option it would refuse.
+TEST(Cli, ViewHelpOffersNoEyeOptions) {
+  const auto r = runPhotovr("view --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("--look-at"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("--eyes"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("--fovy"), std::string::npos) << r.output;
 }
 
 TEST(Cli, MissingSceneFileIsAnInputErrorNamingTheFile) {
