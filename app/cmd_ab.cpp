@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "app/gl_context.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/reference_cache.h"
 #include "app/render_request.h"
 #include "app/trace_output.h"

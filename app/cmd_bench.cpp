@@ -19,7 +19,7 @@
 #include "app/bench_report.h"
 #include "app/commands.h"
 #include "app/gl_context.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/reference_cache.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"

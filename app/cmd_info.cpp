@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "app/commands.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "core/builtin_scenes.h"
 #include "core/error.h"
 #include "core/gltf_writer.h"

@@ -3,7 +3,7 @@
 #include <unistd.h>
 
 #include "app/hmd_sequence.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/render_request.h"
 #include "core/error.h"
 #include "core/scene_transform.h"

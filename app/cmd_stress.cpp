@@ -3,7 +3,7 @@
 
 #include "app/commands.h"
 #include "app/gl_context.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "core/error.h"
 #include "hybrid/stress.h"
 

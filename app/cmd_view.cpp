@@ -16,7 +16,7 @@
 
 #include "app/commands.h"
 #include "app/headset.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/view.h"
 #include "app/view_overlay.h"
 #include "app/view_renderer.h"

@@ -18,7 +18,7 @@
 #include <utility>
 
 #include "app/gl_context.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/sample_maps.h"
 #include "app/trace_output.h"
 #include "core/error.h"

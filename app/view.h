@@ -6,7 +6,7 @@
 #include <array>
 #include <string>
 
-#include "app/options.h"
+#include "core/options.h"
 #include "core/camera.h"
 #include "core/scene.h"
 

@@ -23,9 +23,10 @@
 #include <vector>
 
 #include "app/gl_context.h"
-#include "app/options.h"
+#include "core/options.h"
 #include "app/reference_cache.h"
 #include "app/view.h"
+#include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
 #include "core/error.h"
@@ -55,7 +56,7 @@ struct Setup {
 };
 Setup setupScene(const std::string& name) {
   Setup s{makeBuiltinScene(name), {}};
-  s.view = app::resolveView(s.scene, app::Options({}, {}, {}));
+  s.view = app::resolveView(s.scene, Options({}, {}, {}));
   s.view.head = recenterOnView(s.scene, s.view.head);
   return s;
 }
@@ -199,38 +200,28 @@ void benchEqualTime(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
   }
 }
 
-Args parse(int argc, char** argv) {
+const char* const kUsage =
+    "usage: photovr_bench_denoise [--out DIR] [--repeats N] [--eq-width W] [--eq-height H]\n"
+    "                             [--reference-spp N] [--scenes NAME] [--skip-passes]\n"
+    "The denoiser's per-pass time for both eyes at 960x1080 and 480x540 (mean of --repeats\n"
+    "steady-state frames, 2), and its worth at equal time against an undenoised frame with\n"
+    "more spp at W x H (240x270) on every built-in scene or --scenes NAME, scored against a\n"
+    "cached --reference-spp (256) reference. Writes bench_denoise_*.csv to --out (out/bench).\n";
+
+Args parse(const Options& o) {
   Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (k == "--skip-passes") {
-      a.skipPasses = true;
-      continue;
-    }
-    if (i + 1 >= argc) throw UsageError(k + ": missing value");
-    const std::string v = argv[++i];
-    if (k == "--out")
-      a.out = v;
-    else if (k == "--repeats")
-      a.repeats = std::max(1, std::stoi(v));
-    else if (k == "--eq-width")
-      a.eqWidth = std::stoi(v);
-    else if (k == "--eq-height")
-      a.eqHeight = std::stoi(v);
-    else if (k == "--reference-spp")
-      a.referenceSpp = std::stoi(v);
-    else if (k == "--scenes")
-      a.scenes = {v};
-    else
-      throw UsageError("unknown option " + k +
-                       " (--out, --repeats, --eq-width, --eq-height, --reference-spp, --scenes "
-                       "NAME, --skip-passes)");
-  }
+  a.out = o.text("--out", a.out);
+  a.repeats = o.integer("--repeats", a.repeats, 1, 1000);
+  a.eqWidth = o.integer("--eq-width", a.eqWidth, 8, 4096);
+  a.eqHeight = o.integer("--eq-height", a.eqHeight, 8, 4096);
+  a.referenceSpp = o.integer("--reference-spp", a.referenceSpp, 1, 1 << 20);
+  if (o.has("--scenes")) a.scenes = {builtinSceneArgument(o.text("--scenes", ""))};
+  a.skipPasses = o.has("--skip-passes");
   return a;
 }
 
-int run(int argc, char** argv) {
-  const Args a = parse(argc, argv);
+int run(const Options& options) {
+  const Args a = parse(options);
   const std::unique_ptr<gl::Context> ctx = app::createRenderContext("");
   std::printf("bench_denoise: GL %s\n", ctx->renderer().c_str());
   std::filesystem::create_directories(a.out);
@@ -248,10 +239,8 @@ int run(int argc, char** argv) {
 }  // namespace photovr
 
 int main(int argc, char** argv) {
-  try {
-    return photovr::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_denoise: %s\n", e.what());
-    return 1;
-  }
+  return photovr::benchMain(
+      argc, argv, photovr::kUsage,
+      {"--out", "--repeats", "--eq-width", "--eq-height", "--reference-spp", "--scenes"},
+      {"--skip-passes"}, photovr::run);
 }

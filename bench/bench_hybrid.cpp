@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
 #include "core/stopwatch.h"
@@ -106,20 +107,16 @@ void print(const Row& r, std::ofstream& csv) {
       << '\n';
 }
 
-int run(int argc, char** argv) {
-  std::string out = "out/bench";
-  int w = 240, h = 270, repeats = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--out")
-      out = argv[i + 1];
-    else if (a == "--width")
-      w = std::stoi(argv[i + 1]);
-    else if (a == "--height")
-      h = std::stoi(argv[i + 1]);
-    else if (a == "--repeats")
-      repeats = std::stoi(argv[i + 1]);
-  }
+const char* const kUsage =
+    "usage: photovr_bench_hybrid [--out DIR] [--width W] [--height H] [--repeats N]\n"
+    "Stage times of the hybrid frame (G-buffer, read-back, hit rebuild, trace, pipelined)\n"
+    "against pt on every built-in scene, both eyes at W x H (240x270), 1 spp, 8 bounces,\n"
+    "best of N (3); writes bench_hybrid.csv to --out (out/bench).\n";
+
+int run(const Options& o) {
+  const std::string out = o.text("--out", "out/bench");
+  const int w = o.integer("--width", 240, 1, 4096), h = o.integer("--height", 270, 1, 4096);
+  const int repeats = o.integer("--repeats", 3, 1, 1000);
   std::unique_ptr<gl::Context> ctx;
   try {
     ctx = gl::Context::create({gl::Backend::EGL});
@@ -150,5 +147,6 @@ int run(int argc, char** argv) {
 }  // namespace photovr
 
 int main(int argc, char** argv) {
-  return photovr::run(argc, argv);
+  return photovr::benchMain(argc, argv, photovr::kUsage,
+                            {"--out", "--width", "--height", "--repeats"}, {}, photovr::run);
 }

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "app/sample_maps.h"
+#include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
 #include "gl/context.h"
@@ -34,7 +35,7 @@ namespace {
 
 using SppMaps = std::array<const std::vector<uint16_t>*, 2>;
 
-struct Options {
+struct Config {
   std::string out = "out/bench";
   int width = 240, height = 270;  // a quarter of a DK2 eye per side, both eyes
   int frames = 6, repeats = 5;    // frames >= ConvergenceMonitor::kMinFrames (error estimate)
@@ -68,7 +69,7 @@ std::array<EyeCamera, 2> eyesOf(const Scene& scene, int w, int h, uint32_t frame
 }
 
 // One run of o.frames stereo frames: lowers t to its CPU time per frame if it was faster.
-void timeOnce(HybridRenderer& renderer, const Scene& scene, const Options& o, const SppMaps& maps,
+void timeOnce(HybridRenderer& renderer, const Scene& scene, const Config& o, const SppMaps& maps,
               Timing& t) {
   uint64_t rays = 0;
   ConvergenceMonitor monitor;  // every repeat renders the same frames: one estimate suffices
@@ -88,7 +89,7 @@ void timeOnce(HybridRenderer& renderer, const Scene& scene, const Options& o, co
 
 // Two configurations alternately, best of o.repeats each.
 std::pair<Timing, Timing> timePair(HybridRenderer& a, const SppMaps& mapsA, HybridRenderer& b,
-                                   const SppMaps& mapsB, const Scene& scene, const Options& o) {
+                                   const SppMaps& mapsB, const Scene& scene, const Config& o) {
   Timing ta, tb;
   for (int r = 0; r < o.repeats; ++r) {
     timeOnce(a, scene, o, mapsA, ta);
@@ -131,7 +132,7 @@ struct Printer {
 
 // Converged accumulation: frames to reach the threshold vs rendering all of them.
 void convergedRow(HybridRenderer& renderer, const Scene& scene, const std::string& name,
-                  const Options& o, Printer& p) {
+                  const Config& o, Printer& p) {
   ConvergenceMonitor monitor;
   int stoppedAt = o.convergeFrames;
   const double t0 = cpuMs();
@@ -166,7 +167,7 @@ Scene sceneNamed(const std::string& name) {
   return s;
 }
 
-void benchScene(const std::string& name, bool layers, const Options& o, Printer& p) {
+void benchScene(const std::string& name, bool layers, const Config& o, Printer& p) {
   const Scene scene = sceneNamed(name);
   HybridRenderer base(scene, o.width, o.height, layers, TraceSettings{});
   // The skip-on configuration is timed once per row: the spread of those identical timings
@@ -198,17 +199,19 @@ void benchScene(const std::string& name, bool layers, const Options& o, Printer&
   p.csv << name << ",noise," << lowest << ',' << highest << ",,,,,,,\n";
 }
 
-int run(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--out") o.out = argv[i + 1];
-    if (a == "--width") o.width = std::stoi(argv[i + 1]);
-    if (a == "--height") o.height = std::stoi(argv[i + 1]);
-    if (a == "--frames")
-      o.frames = std::max(ConvergenceMonitor::kMinFrames, std::stoi(argv[i + 1]));
-    if (a == "--repeats") o.repeats = std::stoi(argv[i + 1]);
-  }
+const char* const kUsage =
+    "usage: photovr_bench_skips [--out DIR] [--width W] [--height H] [--frames N] [--repeats N]\n"
+    "Each skip of work a scene does not need, turned off one at a time: hybrid at W x H\n"
+    "(240x270), 1 spp, N frames (6, at least 4), best of --repeats (5) alternating runs, and\n"
+    "the converged-accumulation stop; writes bench_skips.csv to --out (out/bench).\n";
+
+int run(const Options& options) {
+  Config o;
+  o.out = options.text("--out", o.out);
+  o.width = options.integer("--width", o.width, 1, 4096);
+  o.height = options.integer("--height", o.height, 1, 4096);
+  o.frames = options.integer("--frames", o.frames, ConvergenceMonitor::kMinFrames, 100000);
+  o.repeats = options.integer("--repeats", o.repeats, 1, 1000);
   std::unique_ptr<gl::Context> ctx;
   try {
     ctx = gl::Context::create({gl::Backend::EGL});
@@ -235,5 +238,7 @@ int run(int argc, char** argv) {
 }  // namespace photovr
 
 int main(int argc, char** argv) {
-  return photovr::run(argc, argv);
+  return photovr::benchMain(argc, argv, photovr::kUsage,
+                            {"--out", "--width", "--height", "--frames", "--repeats"}, {},
+                            photovr::run);
 }

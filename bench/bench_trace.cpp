@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
 #include "core/camera.h"
@@ -35,7 +36,7 @@ PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 
-struct Options {
+struct Config {
   std::string outDir = "out/bench";  // /out/ is git-ignored
   int width = 240, height = 270;     // a quarter of a DK2 eye per side: ~1 min for all rows
   int spp = 4;
@@ -130,7 +131,7 @@ void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
   }
 }
 
-Row measure(const std::string& name, const Scene& scene, int threads, const Options& opt) {
+Row measure(const std::string& name, const Scene& scene, int threads, const Config& opt) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   Row row{name, threads};
   EmbreeScene embree(scene);
@@ -186,42 +187,26 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
-int intArg(const char* flag, const char* value) {
-  if (!value) throw std::runtime_error(std::string(flag) + " needs a value");
-  const int v = std::atoi(value);
-  if (v <= 0) throw std::runtime_error(std::string(flag) + " wants a positive integer");
-  return v;
+const char* const kUsage =
+    "usage: photovr_bench_trace [--out DIR] [--width W] [--height H] [--spp N] [--repeats N]\n"
+    "                           [--scene NAME] [--render-only]\n"
+    "The tracer against bare rtcIntersect1/rtcOccluded1 on the rays it cast, one eye, per\n"
+    "built-in scene, on 1 thread and all; writes bench_trace.csv to --out (out/bench).\n"
+    "--render-only: no recording or replay (for a profiler).\n";
+
+Config parse(const Options& o) {
+  Config c;
+  c.outDir = o.text("--out", c.outDir);
+  c.width = o.integer("--width", c.width, 1, 4096);
+  c.height = o.integer("--height", c.height, 1, 4096);
+  c.spp = o.integer("--spp", c.spp, 1, 4096);
+  c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
+  if (o.has("--scene")) c.scene = builtinSceneArgument(o.text("--scene", ""));
+  c.renderOnly = o.has("--render-only");
+  return c;
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (a == "--out" && next)
-      o.outDir = next;
-    else if (a == "--width")
-      o.width = intArg("--width", next);
-    else if (a == "--height")
-      o.height = intArg("--height", next);
-    else if (a == "--spp")
-      o.spp = intArg("--spp", next);
-    else if (a == "--repeats")
-      o.repeats = intArg("--repeats", next);
-    else if (a == "--scene" && next)
-      o.scene = next;
-    else if (a == "--render-only")
-      o.renderOnly = true, --i;  // a flag: no value to skip
-    else
-      throw std::runtime_error(
-          "usage: photovr_bench_trace [--out DIR] [--width W] "
-          "[--height H] [--spp N] [--repeats N] [--scene NAME] [--render-only]");
-    ++i;
-  }
-  return o;
-}
-
-int run(const Options& opt) {
+int run(const Config& opt) {
   const int all = tbb::info::default_concurrency();
   std::printf(
       "photovr_bench_trace: one eye %dx%d, %d spp, best of %d; raw = EmbreeScene::replay "
@@ -252,10 +237,8 @@ int run(const Options& opt) {
 }  // namespace photovr
 
 int main(int argc, char** argv) {
-  try {
-    return photovr::run(photovr::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "photovr_bench_trace: %s\n", e.what());
-    return 1;
-  }
+  return photovr::benchMain(
+      argc, argv, photovr::kUsage,
+      {"--out", "--width", "--height", "--spp", "--repeats", "--scene"}, {"--render-only"},
+      [](const photovr::Options& o) { return photovr::run(photovr::parse(o)); });
 }

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/camera.h"
 #include "core/stopwatch.h"
@@ -188,31 +189,24 @@ void report(const std::vector<SceneRow>& rows, const Config& c) {
   }
 }
 
-Config parse(int argc, char** argv) {
+const char* const kUsage =
+    "usage: photovr_gpu_probe [--out DIR] [--repeats N] [--scene NAME] [--width W] [--height H]\n"
+    "The G-buffer pass, the headset compositor and the denoiser timed by GL timer queries\n"
+    "(median of --repeats, 20), both eyes at W x H (960x1080) on a 1920x1080 panel, on EGL;\n"
+    "writes gpu_probe.csv and gpu_probe_denoiser.csv to --out (out/bench).\n";
+
+Config parse(const Options& o) {
   Config c;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (i + 1 >= argc) throw std::runtime_error(k + ": missing value");
-    const std::string v = argv[++i];
-    if (k == "--out")
-      c.out = v;
-    else if (k == "--repeats")
-      c.repeats = std::clamp(std::stoi(v), 1, 1000);
-    else if (k == "--scene")
-      c.scenes = {v};
-    else if (k == "--width")
-      c.eyeW = std::clamp(std::stoi(v), 8, 4096);
-    else if (k == "--height")
-      c.eyeH = std::clamp(std::stoi(v), 8, 4096);
-    else
-      throw std::runtime_error("unknown option " + k +
-                               " (--out, --repeats, --scene NAME, --width, --height)");
-  }
+  c.out = o.text("--out", c.out);
+  c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
+  c.eyeW = o.integer("--width", c.eyeW, 8, 4096);
+  c.eyeH = o.integer("--height", c.eyeH, 8, 4096);
+  if (o.has("--scene")) c.scenes = {builtinSceneArgument(o.text("--scene", ""))};
   return c;
 }
 
-int run(int argc, char** argv) {
-  const Config c = parse(argc, argv);
+int run(const Options& options) {
+  const Config c = parse(options);
   const auto ctx = gl::Context::create({gl::Backend::EGL});
   const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::printf("gpu_probe: %s; eyes %dx%d x 2, panel %dx%d\n", ctx->renderer().c_str(), c.eyeW,
@@ -228,10 +222,7 @@ int run(int argc, char** argv) {
 }  // namespace photovr
 
 int main(int argc, char** argv) {
-  try {
-    return photovr::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "photovr_gpu_probe: %s\n", e.what());
-    return 1;
-  }
+  return photovr::benchMain(argc, argv, photovr::kUsage,
+                            {"--out", "--repeats", "--scene", "--width", "--height"}, {},
+                            photovr::run);
 }

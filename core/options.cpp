@@ -1,4 +1,4 @@
-#include "app/options.h"
+#include "core/options.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 
-namespace photovr::app {
+namespace photovr {
 namespace {
 
 float parseFloat(const std::string& option, const std::string& text) {
@@ -96,4 +96,4 @@ std::string Options::choice(const std::string& name, const std::string& fallback
   throw UsageError(name + ": '" + v + "' is not one of " + list);
 }
 
-}  // namespace photovr::app
+}  // namespace photovr

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-namespace photovr::app {
+namespace photovr {
 
 class Options {
  public:
@@ -33,4 +33,4 @@ class Options {
   std::vector<std::string> positional_;
 };
 
-}  // namespace photovr::app
+}  // namespace photovr
