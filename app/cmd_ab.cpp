@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "app/gl_context.h"
+#include "core/files.h"
 #include "core/options.h"
 #include "app/reference_cache.h"
 #include "app/render_request.h"
@@ -68,6 +69,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   a.referenceSpp = o.integer("--reference-spp", 256, 1, 1 << 20);
   const std::string stem = r.sceneSpec.substr(r.sceneSpec.find_last_of('/') + 1);
   r.outDir = o.text("--out", "out/ab-" + stem.substr(0, stem.find('.')));
+  createOutputFolder(r.outDir);
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);

@@ -19,6 +19,7 @@
 #include "app/bench_report.h"
 #include "app/commands.h"
 #include "app/gl_context.h"
+#include "core/files.h"
 #include "core/options.h"
 #include "app/reference_cache.h"
 #include "core/builtin_scenes.h"
@@ -118,6 +119,7 @@ int runBench(const Args& args) {
   BenchReport report;
   report.quick = o.has("--quick");
   const std::string dir = o.text("--out", "out/bench");
+  createOutputFolder(dir);
   std::filesystem::create_directories(dir);
   const std::vector<std::string> scenes = sceneList(o.text("--scenes", ""));
   for (const std::string& s : scenes) makeBuiltinScene(s);  // unknown names fail up front

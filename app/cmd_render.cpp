@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include "app/hmd_sequence.h"
+#include "core/files.h"
 #include "core/options.h"
 #include "app/render_request.h"
 #include "core/error.h"
@@ -87,6 +88,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   if (r.denoise != "off" && r.mode == "gbuffer")
     throw UsageError("--denoise: needs a traced mode (hybrid or pt)");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
+  createOutputFolder(r.outDir);
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);

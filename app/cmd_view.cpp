@@ -16,6 +16,7 @@
 
 #include "app/commands.h"
 #include "app/headset.h"
+#include "core/files.h"
 #include "core/options.h"
 #include "app/view.h"
 #include "app/view_overlay.h"
@@ -113,6 +114,7 @@ ViewConfig parseViewConfig(Args args) {
   c.reproject = !o.has("--no-reproject");
   c.overlay = !o.has("--no-overlay");
   c.outDir = o.text("--out", ".");
+  createOutputFolder(c.outDir);
   c.frames = o.integer("--frames", 0, 1, 1000000);
   c.screenshot = o.text("--screenshot", "");
   if (!c.screenshot.empty() && !c.frames)

@@ -15,12 +15,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <utility>
 
 #include "app/gl_context.h"
 #include "core/options.h"
 #include "app/sample_maps.h"
 #include "app/trace_output.h"
+#include "core/files.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "gl/denoiser.h"
@@ -114,30 +116,20 @@ std::unique_ptr<gl::Denoiser> makeDenoiser(const RenderRequest& r) {
   return std::make_unique<gl::Denoiser>(r.width, r.height, params);
 }
 
-// hmd_frames.csv, written beside its destination and renamed at the end, like every image
-// (core/image_io).
+// hmd_frames.csv, kept in memory and written complete at the end (core/files.h),
+// like every image.
 class FrameLog {
  public:
-  explicit FrameLog(const std::string& dir)
-      : path_(dir + "/hmd_frames.csv"), temp_(path_ + ".tmp") {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    out_.open(temp_);
-    if (!out_) throw InputError(path_, "cannot write");
+  explicit FrameLog(const std::string& dir) : path_(dir + "/hmd_frames.csv") {
     out_ << "frame,t_render,t_display,rotation_delta_deg,move_delta_m,disoccluded_left,"
             "disoccluded_right,render_ms,compositor_ms\n";
   }
   std::ostream& row() { return out_; }
-  void close() {
-    out_.close();
-    std::error_code ec;
-    std::filesystem::rename(temp_, path_, ec);
-    if (!out_ || ec) throw InputError(path_, "cannot write");
-  }
+  void close() { writeFileAtomically(path_, out_.str()); }
 
  private:
-  std::string path_, temp_;
-  std::ofstream out_;
+  std::string path_;
+  std::ostringstream out_;
 };
 
 // One sequence: the renderer, the denoiser and the compositor on one context.

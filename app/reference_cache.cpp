@@ -8,6 +8,7 @@
 
 #include "app/render_request.h"
 #include "app/trace_output.h"
+#include "core/files.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/scene_hash.h"
@@ -35,10 +36,12 @@ std::vector<glm::vec3> fromImage(const ImageF& img) {  // top-down file -> botto
   return v;
 }
 
+// The saved frame count; 0 (rebuild) for anything but a plausible count: the cache is a
+// file a user or a crash can corrupt.
 int cachedFrames(const std::string& dir) {
   std::ifstream in(dir + "/frames.txt");
   int frames = 0;
-  return (in >> frames) ? frames : 0;
+  return (in >> frames) && frames > 0 && frames <= (1 << 24) ? frames : 0;
 }
 
 void save(const Reference& ref, const ReferenceSpec& spec, int frames) {
@@ -46,9 +49,7 @@ void save(const Reference& ref, const ReferenceSpec& spec, int frames) {
     writeImage(eyeFile(ref.directory, e), toImage(ref.eyes[e], spec.width, spec.height));
   // The count is written last and atomically: a crash mid-save leaves the previous count,
   // and images with more samples than it says are still a valid (better) mean.
-  const std::string tmp = ref.directory + "/frames.txt.tmp";
-  std::ofstream(tmp) << frames << "\n";
-  fs::rename(tmp, ref.directory + "/frames.txt");
+  writeFileAtomically(ref.directory + "/frames.txt", std::to_string(frames) + "\n");
 }
 
 bool load(Reference& ref, const ReferenceSpec& spec, int eyeCount, int frames) {
@@ -69,8 +70,8 @@ bool load(Reference& ref, const ReferenceSpec& spec, int eyeCount, int frames) {
 }  // namespace
 
 std::string referenceCacheRoot() {
-  if (const char* d = std::getenv("PHOTOVR_CACHE_DIR")) return d;
-  if (const char* x = std::getenv("XDG_CACHE_HOME")) return std::string(x) + "/photovr";
+  if (const char* d = std::getenv("PHOTOVR_CACHE_DIR"); d && *d) return d;  // empty: unset
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/photovr";
   const char* home = std::getenv("HOME");
   return std::string(home ? home : ".") + "/.cache/photovr";
 }

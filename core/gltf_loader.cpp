@@ -18,6 +18,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
 #include "core/mesh_util.h"
 
@@ -46,19 +47,11 @@ std::string firstLine(const std::string& text) {
 }
 
 std::vector<uint8_t> readFile(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, "file not found");
-  if (fs::is_directory(path, ec)) throw InputError(path, "is a directory, not a glTF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the file for reading");
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, "read error");
-  if (bytes.empty()) throw InputError(path, "file is empty");
   // tinygltf takes 32-bit sizes, and .glb cannot describe more (glTF 2.0 §4.4.2).
-  if (bytes.size() > std::numeric_limits<uint32_t>::max())
-    throw InputError(path, "file is larger than 4 GiB");
-  return bytes;
+  const std::string bytes =
+      readRegularFile(path, "glTF file", std::numeric_limits<uint32_t>::max());
+  if (bytes.empty()) throw InputError(path, "file is empty");
+  return {bytes.begin(), bytes.end()};
 }
 
 bool isGlb(const std::vector<uint8_t>& bytes) {
@@ -120,6 +113,8 @@ std::string describeParseFailure(const std::string& err, const std::string& warn
   // Name the object behind tinygltf's two terse buffer messages.
   if (line.rfind("Failed to decode 'uri'", 0) == 0 && line.find("Buffer") != std::string::npos)
     return "buffer data URI is not valid base64 or is shorter than its byteLength";
+  if (line.rfind("File read error : ", 0) == 0)
+    return "cannot read " + line.substr(std::strlen("File read error : "));
   if (line.rfind("File not found : ", 0) == 0)
     return "buffer file not found: " + line.substr(std::strlen("File not found : "));
   return line;
@@ -141,6 +136,66 @@ void forwardWarnings(const std::string& path, const std::string& warn,
   }
 }
 
+// JSON nests at most this deep here: tinygltf's parser recurses once per level and a file
+// nested ~20 000 deep overflowed the stack (a crash, not an error). glTF itself nests
+// fewer than 10 levels; 'extras' may add some.
+constexpr int kMaxJsonDepth = 512;
+
+void checkJsonDepth(const uint8_t* json, size_t size, const std::string& path) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < size; ++i) {
+    const char c = char(json[i]);
+    if (inString) {
+      if (c == '\\')
+        ++i;  // skip the escaped character
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(path,
+                         "JSON nested more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+}
+
+// External buffers and images are read only from regular files (a directory, a FIFO or a
+// device would make tinygltf allocate, block or read forever), and never expanded as shell
+// words (tinygltf's default ExpandFilePath runs wordexp).
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& file,
+                     void*) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) {
+    if (err) *err += "File not found : " + file + "\n";
+    return false;
+  }
+  const auto size = fs::is_regular_file(file, ec) ? fs::file_size(file, ec) : 0;
+  if (!fs::is_regular_file(file, ec) || ec || size > std::numeric_limits<uint32_t>::max()) {
+    if (err) *err += "not a regular file (a directory, FIFO or device), or over 4 GiB\n";
+    return false;
+  }
+  std::ifstream in(file, std::ios::binary);
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad() || out->size() != size) {
+    if (err) *err += "read error\n";
+    return false;
+  }
+  return true;
+}
+
+bool regularFileExists(const std::string& file, void*) {
+  std::error_code ec;
+  return fs::exists(file, ec);
+}
+
+std::string pathAsIs(const std::string& file, void*) {
+  return file;
+}
+
 std::string baseDirOf(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? "." : parent.string();
@@ -150,6 +205,7 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
                      std::vector<std::string>& warnings) {
   tg::TinyGLTF loader;
   loader.SetImageLoader(keepEncodedImage, nullptr);
+  loader.SetFsCallbacks({regularFileExists, pathAsIs, readRegularFile, nullptr, nullptr});
   tg::Model model;
   std::string err, warn;
   const std::string baseDir = baseDirOf(path);
@@ -157,8 +213,11 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
   bool ok;
   if (isGlb(bytes)) {
     checkGlbLayout(bytes, path);
+    checkJsonDepth(bytes.data() + 20, std::min<size_t>(readU32(bytes, 12), bytes.size() - 20),
+                   path);
     ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, baseDir);
   } else {
+    checkJsonDepth(bytes.data(), bytes.size(), path);
     const char* text = reinterpret_cast<const char*>(bytes.data());
     ok = loader.LoadASCIIFromString(&model, &err, &warn, text, size, baseDir);
   }
@@ -424,15 +483,26 @@ void expandToRgba(const std::vector<uint8_t>& raw, int channels, std::vector<uin
 // read, while glTF colours are straight alpha (glTF 2.0 §3.9.2), so a half-transparent
 // texel would come back darkened. Throws InputError with the bare problem.
 void decodeStraightRgba8(const std::vector<uint8_t>& bytes, Texture& texture) {
+  // glTF 2.0's core image formats (§3.9.2), told apart by their magic bytes.
+  const bool png = bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+  if (!png && !jpeg) throw InputError("", "not a PNG or JPEG image (the formats glTF 2.0 allows)");
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   void* proxy = &reader;
   OIIO::ImageSpec config;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   config.attribute("oiio:UnassociatedAlpha", 1);
-  // The format is sniffed from the magic bytes; the name only needs a plausible extension.
-  auto in =
-      OIIO::ImageInput::open(bytes.size() > 3 && bytes[1] == 'P' ? "m.png" : "m.jpg", &config);
-  if (!in) throw InputError("", "cannot decode image: " + firstLine(OIIO::geterror()));
+  // The name only picks the decoder; OpenImageIO quotes it in its messages, which
+  // withoutName removes (it is no file of the user's).
+  const std::string name = png ? "image.png" : "image.jpg";
+  const auto withoutName = [&](std::string message) {
+    for (const std::string& quoted : {" (\"" + name + "\")", "\"" + name + "\" "})
+      for (size_t at; (at = message.find(quoted)) != std::string::npos;)
+        message.erase(at, quoted.size());
+    return message;
+  };
+  auto in = OIIO::ImageInput::open(name, &config);
+  if (!in) throw InputError("", "cannot decode image: " + withoutName(firstLine(OIIO::geterror())));
   const OIIO::ImageSpec& spec = in->spec();
   const int c = spec.nchannels;
   if (spec.width <= 0 || spec.height <= 0 || c <= 0 || c > 4 ||
@@ -440,7 +510,7 @@ void decodeStraightRgba8(const std::vector<uint8_t>& bytes, Texture& texture) {
     throw InputError("", "implausible image size or channel count");
   std::vector<uint8_t> raw(size_t(spec.width) * size_t(spec.height) * size_t(c));
   if (!in->read_image(0, 0, 0, c, OIIO::TypeDesc::UINT8, raw.data()))
-    throw InputError("", "corrupt or truncated image: " + firstLine(in->geterror()));
+    throw InputError("", "corrupt or truncated image: " + withoutName(firstLine(in->geterror())));
   texture.width = spec.width;
   texture.height = spec.height;
   expandToRgba(raw, c, texture.rgba);
@@ -465,8 +535,9 @@ void applySampler(const Loader& ld, int sampler, Texture& texture) {
   texture.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
 }
 
-// Decodes one glTF texture; a missing or undecodable image is a warning, not an error, so
-// a scene with one broken texture still renders with the material's factors.
+// Decodes one glTF texture. A missing or undecodable image is an error naming the file and
+// the texture (bad input, as a broken buffer is); a texture with no image source at all is
+// legal glTF and only warned about: the material's factor stands alone.
 std::optional<Texture> loadTexture(Loader& ld, int index, const std::string& where) {
   const tg::Texture& gt = ld.model.textures[size_t(index)];
   if (gt.sampler >= 0 && !inRange(gt.sampler, ld.model.samplers))
@@ -475,22 +546,17 @@ std::optional<Texture> loadTexture(Loader& ld, int index, const std::string& whe
     ld.fail(where + ": image index " + std::to_string(gt.source) + " out of range");
   Texture texture;
   texture.name = textureName(ld, index);
-  const std::string fallback = ", using the material factor";
   if (gt.source < 0) {
-    ld.warn("texture " + named(texture.name) + ": no image source" + fallback);
+    ld.warn("texture " + named(texture.name) + ": no image source, using the material factor");
     return std::nullopt;
   }
   std::string problem;
   const std::vector<uint8_t> bytes = encodedImage(ld, ld.model.images[size_t(gt.source)], problem);
-  if (!problem.empty()) {
-    ld.warn("texture " + named(texture.name) + ": " + problem + fallback);
-    return std::nullopt;
-  }
+  if (!problem.empty()) ld.fail("texture " + named(texture.name) + ": " + problem);
   try {
     decodeStraightRgba8(bytes, texture);
   } catch (const InputError& e) {
-    ld.warn("texture " + named(texture.name) + ": " + firstLine(e.what()) + fallback);
-    return std::nullopt;
+    ld.fail("texture " + named(texture.name) + ": " + firstLine(e.what()));
   }
   applySampler(ld, gt.sampler, texture);
   return texture;

@@ -9,10 +9,11 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <unistd.h>
+#include <sstream>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/files.h"
 #include "core/error.h"
 
 namespace photovr {
@@ -351,25 +352,13 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// Serialised in memory, then written complete or not at all (core/files.h).
 void writeAtomically(const Writer& w, bool binary) {
-  const fs::path target(w.path);
-  std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  const fs::path tmp = target.parent_path() /
-                       (".tmp." + std::to_string(getpid()) + "." + target.filename().string());
+  std::ostringstream bytes;
   tg::TinyGLTF gltf;
-  const bool ok = gltf.WriteGltfSceneToFile(&w.model, tmp.string(), /*embedImages=*/true,
-                                            /*embedBuffers=*/true, /*prettyPrint=*/!binary,
-                                            /*writeBinary=*/binary);
-  if (!ok || !fs::exists(tmp, ec)) {
-    fs::remove(tmp, ec);
-    w.fail("cannot write the file");
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    w.fail("cannot move the finished file into place: " + ec.message());
-  }
+  if (!gltf.WriteGltfSceneToStream(&w.model, bytes, /*prettyPrint=*/!binary, binary))
+    w.fail("cannot serialise the scene");
+  writeFileAtomically(w.path, bytes.str());
 }
 
 }  // namespace

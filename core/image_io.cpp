@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <unistd.h>
 
+#include "core/files.h"
 #include "core/error.h"
 
 namespace photovr {
@@ -26,38 +26,42 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "unknown error" : line;
 }
 
-std::string temporaryPath(const std::string& path) {
-  const fs::path p(path);
-  // Keep the extension last: OpenImageIO picks the format by it.
-  return (p.parent_path() / (".tmp." + std::to_string(getpid()) + "." + p.filename().string()))
-      .string();
-}
-
+// Through memory where the format's writer takes an IOProxy (PNG, JPEG, ...): their
+// writers do not all report a full disk (measured: PNGs truncated with success), so the
+// bytes are written and checked by writeFileAtomically. Other formats (OpenEXR, whose
+// writer reports write errors) go to a temporary file renamed into place.
 void writePixels(const std::string& path, int w, int h, int c, TypeDesc type, const void* pixels) {
   if (w <= 0 || h <= 0 || c <= 0) throw InputError(path, "refusing to write an empty image");
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  const std::string tmp = temporaryPath(path);
   auto out = ImageOutput::create(path);
   if (!out) throw InputError(path, "no writer for this file type: " + firstLine(OIIO::geterror()));
   ImageSpec spec(w, h, c, type);
   // Colour is straight (unassociated) alpha everywhere in photovr, as in glTF; without
   // this OpenImageIO would premultiply on the way out.
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  bool ok = out->open(tmp, spec) && out->write_image(type, pixels) && out->close();
-  if (!ok) {
+  const auto fail = [&](const std::string& tmp) {
     const std::string why = firstLine(out->geterror());
     out.reset();
-    fs::remove(tmp, ec);
+    std::error_code ec;
+    if (!tmp.empty()) fs::remove(tmp, ec);
     throw InputError(path, "cannot write: " + why);
+  };
+  if (out->supports("ioproxy")) {
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    if (!(out->set_ioproxy(&proxy) && out->open(path, spec) && out->write_image(type, pixels) &&
+          out->close()))
+      fail("");
+    out.reset();
+    writeFileAtomically(path, bytes.data(), bytes.size());
+    return;
   }
+  std::error_code ec;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  const std::string tmp = temporaryPathFor(path);
+  if (!(out->open(tmp, spec) && out->write_image(type, pixels) && out->close())) fail(tmp);
   out.reset();
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, "cannot move the finished file into place: " + ec.message());
-  }
+  moveIntoPlace(tmp, path);
 }
 
 }  // namespace
@@ -75,10 +79,14 @@ ImageF readImageF(const std::string& path) {
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + firstLine(OIIO::geterror()));
   const ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
-      int64_t(spec.width) * spec.height > (int64_t(1) << 30))
+  // At most 2 GiB of float samples (a 16384x8192 RGB environment takes 1.5): a header may
+  // claim any size, and the pixels are allocated before a short file shows it lied.
+  constexpr int64_t kMaxSamples = int64_t(1) << 29;
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 64 ||
+      int64_t(spec.width) * spec.height * spec.nchannels > kMaxSamples)
     throw InputError(path, "implausible image size " + std::to_string(spec.width) + "x" +
-                               std::to_string(spec.height));
+                               std::to_string(spec.height) + "x" + std::to_string(spec.nchannels) +
+                               " (at most 2^29 samples)");
   ImageF img(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.data.data()))
     throw InputError(path, "corrupt or truncated image: " + firstLine(in->geterror()));

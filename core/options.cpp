@@ -32,6 +32,8 @@ Options::Options(const std::vector<std::string>& args, const std::set<std::strin
       values_[a] = "";
     } else if (valued.count(a)) {
       if (i + 1 >= args.size()) throw UsageError(a + ": missing value");
+      // An empty value is never meant: an empty --out would write into the root folder.
+      if (args[i + 1].empty()) throw UsageError(a + ": empty value");
       values_[a] = args[++i];
     } else {
       throw UsageError("unknown option '" + a + "' (see --help)");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/files.h"
 
 namespace photovr::hmd {
 namespace {
@@ -86,11 +87,7 @@ PoseScript parsePoseScript(const std::string& text, const std::string& source) {
 }
 
 PoseScript loadPoseScript(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the pose script");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parsePoseScript(ss.str(), path);
+  return parsePoseScript(readRegularFile(path, "pose script"), path);
 }
 
 Pose PoseScript::sample(double t) const {

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "hmd/bytes.h"
 #include "hmd/dk2_driver.h"
 
@@ -15,9 +16,8 @@ namespace {
 constexpr size_t kRecordHeader = 1 + 8 + 2;
 
 std::vector<uint8_t> slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the HID recording");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string bytes = readRegularFile(path, "HID recording");
+  return {bytes.begin(), bytes.end()};
 }
 
 HidRecord parseRecord(const std::string& path, const std::vector<uint8_t>& data, size_t& at,

@@ -48,6 +48,7 @@ TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
       {"export-scene nosuch /tmp/x.glb", "unknown built-in scene 'nosuch'"},
       {"export-scene cornell /tmp/x.obj", "/tmp/x.obj: expected a .glb or .gltf path"},
       {"render --fovy 40", "--fovy: only with --eyes mono"},
+      {"render --out ''", "--out: empty value"},  // it wrote into the root folder
       {"view --scene cornell --eyes mono", "view: --eyes and --fovy are not headset options"},
   };
   for (const auto& c : cases) {
@@ -166,6 +167,34 @@ TEST(Cli, GlfwWithoutADisplaySaysWhatToTryInstead) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("glfw: no display"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--backend egl"), std::string::npos) << r.output;
+}
+
+// Refused before any rendering, naming the path; nothing written.
+TEST(Cli, OutputFolderThatIsAFileIsRefusedUpFront) {
+  const std::string dir = tempDir("out-is-a-file");
+  std::ofstream(dir + "/afile") << "x";
+  const auto r = runPhotovr("render --scene cornell --backend osmesa --width 8 --height 8 --out " +
+                            dir + "/afile");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(dir + "/afile: cannot create the output folder"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("G-buffer"), std::string::npos) << r.output;  // no frame rendered
+}
+
+// A corrupt frame count in the reference cache (negative) crashed `reference`; the cache
+// is now rebuilt from scratch.
+TEST(Cli, CorruptReferenceCacheIsRebuilt) {
+  const std::string cache = tempDir("corrupt-cache");
+  const std::string args =
+      "reference --scene cornell --width 8 --height 8 --bounces 1 --spp 4 --backend osmesa";
+  ASSERT_EQ(runPhotovr(args, "PHOTOVR_CACHE_DIR=" + cache).status, 0);
+  int counters = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
+    if (e.path().filename() == "frames.txt") std::ofstream(e.path()) << "-5\n", ++counters;
+  ASSERT_EQ(counters, 1);
+  const auto r = runPhotovr(args, "PHOTOVR_CACHE_DIR=" + cache);
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("0 -> 4 spp"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UnwritableOutputIsAnErrorNotACrash) {

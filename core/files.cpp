@@ -1,0 +1,85 @@
+#include "core/files.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+
+namespace photovr {
+namespace fs = std::filesystem;
+
+std::string readRegularFile(const std::string& path, const std::string& what, size_t maxBytes) {
+  std::error_code ec;
+  if (path.empty()) throw InputError("(empty path)", "no " + what + " file named");
+  if (!fs::exists(path, ec)) throw InputError(path, "file not found");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path, "not a regular file (a folder, FIFO or device), expected " + what);
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec || size > maxBytes)
+    throw InputError(path, "larger than " + std::to_string(maxBytes) + " bytes");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the " + what + " for reading");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "read error");
+  return bytes;
+}
+
+std::string temporaryPathFor(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / (".tmp." + std::to_string(getpid()) + "." + p.filename().string()))
+      .string();
+}
+
+namespace {
+
+// Writes, flushes and syncs; "" on success, else what failed.
+std::string writeAndSync(const std::string& file, const void* data, size_t size) {
+  FILE* f = std::fopen(file.c_str(), "wb");
+  if (!f) return std::strerror(errno);
+  std::string why;
+  if (size > 0 && std::fwrite(data, 1, size, f) != size) why = std::strerror(errno);
+  if (why.empty() && std::fflush(f) != 0) why = std::strerror(errno);
+  if (why.empty() && fsync(fileno(f)) != 0) why = std::strerror(errno);
+  if (std::fclose(f) != 0 && why.empty()) why = std::strerror(errno);
+  return why;
+}
+
+}  // namespace
+
+void createOutputFolder(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "cannot create the output folder: " + ec.message());
+  if (!fs::is_directory(dir, ec)) throw InputError(dir, "exists and is not a folder");
+}
+
+void moveIntoPlace(const std::string& temporary, const std::string& path) {
+  std::error_code ec;
+  fs::rename(temporary, path, ec);
+  if (!ec) return;
+  const std::string why = ec.message();  // before remove() resets ec
+  fs::remove(temporary, ec);
+  throw InputError(path, "cannot move the finished file into place: " + why);
+}
+
+void writeFileAtomically(const std::string& path, const void* data, size_t size) {
+  if (path.empty()) throw InputError("(empty path)", "refusing to write a file with no name");
+  std::error_code ec;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  const std::string tmp = temporaryPathFor(path);
+  const std::string why = writeAndSync(tmp, data, size);
+  if (!why.empty()) {
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write: " + why);
+  }
+  moveIntoPlace(tmp, path);
+}
+
+}  // namespace photovr
