@@ -75,15 +75,16 @@ void main() {
         if (!inside(q.xy)) continue;
         Geometry gq = unpackGeometry(texelFetch(aGeometry, q, 0));
         if (gq.instance == SVGF_NO_INSTANCE) continue;
-        float w = h[abs(x)] * h[abs(y)] * depthWeight(g.depth, gq.depth, gradient, off) *
-                  normalWeight(g.normal, gq.normal);
+        float geometry = depthLog2Weight(g.depth, gq.depth, gradient, off) +
+                         normalLog2Weight(g.normal, gq.normal);
+        float h2 = h[abs(x)] * h[abs(y)];
         vec4 cd = texelFetch(aDiffuse, q, 0);
-        float wd = w * luminanceWeight(ld, luminance(cd.rgb), phi.x);
+        float wd = h2 * exp2(geometry + luminanceLog2Weight(ld, luminance(cd.rgb), phi.x));
         sumD += vec4(wd * cd.rgb, wd * wd * cd.a);  // eq. (2): variance weights squared
         wsum.x += wd;
         if (filterSpecular) {
           vec4 cs = texelFetch(aSpecular, q, 0);
-          float ws = w * luminanceWeight(ls, luminance(cs.rgb), phi.y);
+          float ws = h2 * exp2(geometry + luminanceLog2Weight(ls, luminance(cs.rgb), phi.y));
           sumS += vec4(ws * cs.rgb, ws * ws * cs.a);
           wsum.y += ws;
         }

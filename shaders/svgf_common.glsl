@@ -47,18 +47,27 @@ Geometry unpackGeometry(uvec4 g) {
   return Geometry(g.x, g.y, uintBitsToFloat(g.z), unpackNormal(g.w));
 }
 
+// The edge-stopping weights of eqs. (3)-(5) as base-2 logarithms: a tap's product of them
+// is one exp2 per lobe (the a-trous pass), not an exp or pow per factor.
+const float kLog2e = 1.4426950408889634;
+
 // Eq. (3): depth weight, with the depth change predicted by the screen-space gradient
 // over the offset as the scale. Reversed-Z depth is affine in screen space on a plane, so
 // a plane gives exactly exp(-1 / sigma_z). The epsilon is relative to the depth (depth
 // is ~near / distance, so an absolute one would depend on the scene's scale).
-float depthWeight(float d, float dq, vec2 gradient, vec2 offset) {
+float depthLog2Weight(float d, float dq, vec2 gradient, vec2 offset) {
   const float kRelativeEpsilon = 1e-5;  // ~100 float ulps of the depth: planes facing the eye
   float scale = params.edge.x * abs(dot(gradient, offset)) + kRelativeEpsilon * d;
-  return exp(-abs(d - dq) / scale);
+  return -abs(d - dq) * kLog2e / scale;
 }
 
-// Eq. (4): normal weight, max(0, n.nq)^sigma_n.
-float normalWeight(vec3 n, vec3 nq) { return pow(max(0.0, dot(n, nq)), params.edge.y); }
+// Eq. (4): normal weight, max(0, n.nq)^sigma_n (2^-12000 = 0 where n.nq <= 0).
+float normalLog2Weight(vec3 n, vec3 nq) { return params.edge.y * log2(max(dot(n, nq), 1e-30)); }
 
 // Eq. (5): luminance weight; 'phi' = sigma_l * sqrt(g3x3(Var)) + epsilon.
-float luminanceWeight(float l, float lq, float phi) { return exp(-abs(l - lq) / phi); }
+float luminanceLog2Weight(float l, float lq, float phi) { return -abs(l - lq) * kLog2e / phi; }
+
+float depthWeight(float d, float dq, vec2 gradient, vec2 offset) {
+  return exp2(depthLog2Weight(d, dq, gradient, offset));
+}
+float normalWeight(vec3 n, vec3 nq) { return exp2(normalLog2Weight(n, nq)); }
