@@ -87,7 +87,7 @@ TEST(HmdCli, BadHeadsetInputIsAOneLineError) {
     std::string args, message;
     int status;
   } cases[] = {
-      {"--hmd sim " + dir + "/missing.csv", dir + "/missing.csv: cannot open", 1},
+      {"--hmd sim " + dir + "/missing.csv", dir + "/missing.csv: file not found", 1},
       {"--hmd sim " + dir + "/bad.csv", dir + "/bad.csv: line 3: 'zero' is not a number", 1},
       {"--hmd dk2", "--hmd dk2: no Rift DK2", 1},
       {"--hmd replay " + dir + "/bad.csv", dir + "/bad.csv: not a photovr HID recording", 1},
@@ -110,7 +110,7 @@ TEST(HmdCli, ViewRejectsBadInputBeforeOpeningAWindow) {
     std::string args, message;
     int status;
   } cases[] = {
-      {"--hmd sim " + dir + "/missing.csv", dir + "/missing.csv: cannot open", 1},
+      {"--hmd sim " + dir + "/missing.csv", dir + "/missing.csv: file not found", 1},
       {"--frames 0", "--frames: 0 is out of range", 2},
       {"--screenshot " + dir + "/x.png", "--screenshot: needs --frames", 2},
       {"--window 10", "--window: '10' is not WIDTHxHEIGHT", 2},
