@@ -102,7 +102,7 @@ ViewConfig parseViewConfig(Args args) {
   c.window = parseSize(o, "--window", c.window);
   c.panel = parseSize(o, "--panel", {0, 0});
   if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");
-  c.rotation = gl::checkPanelRotation(o.integer("--rotate", 0, 0, 270));
+  c.rotation = std::stoi(o.choice("--rotate", "0", {"0", "90", "180", "270"}));
   c.rotationGiven = o.has("--rotate");
   c.settings.pathTraced = o.choice("--mode", "hybrid", {"hybrid", "pt"}) == "pt";
   c.settings.spp = o.integer("--spp", 1, 1, 64);

@@ -49,14 +49,19 @@ const char* const kHmdRenderHelp =
 
 namespace {
 
-// Pulls "--name value" out of 'args' into 'taken'.
+// Pulls "--name value" out of 'args' into 'taken'; given twice is an error (as for --hmd).
 void takeOption(Args& args, const std::string& name, Args& taken) {
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] != name) continue;
+  bool found = false;
+  for (size_t i = 0; i < args.size();) {
+    if (args[i] != name) {
+      ++i;
+      continue;
+    }
+    if (found) throw UsageError(name + ": given twice");
     if (i + 1 >= args.size()) throw UsageError(name + ": missing value");
     taken.insert(taken.end(), {args[i], args[i + 1]});
     args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
-    return;
+    found = true;
   }
 }
 
@@ -99,7 +104,7 @@ HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd) {
   const Options opts(taken, {"--fps", "--latency-ms", "--rotate", "--panel"}, {});
   o.fps = opts.number("--fps", 30.0f, 0.1f, 1000.0f);
   o.latencyMs = opts.number("--latency-ms", -1.0f, 0.0f, 10000.0f);
-  o.rotation = gl::checkPanelRotation(opts.integer("--rotate", 0, 0, 270));
+  o.rotation = std::stoi(opts.choice("--rotate", "0", {"0", "90", "180", "270"}));
   if (opts.has("--panel")) {
     const glm::ivec2 p = parsePanelSize(opts.text("--panel", ""));
     o.panelWidth = p.x, o.panelHeight = p.y;

@@ -28,6 +28,7 @@ Options::Options(const std::vector<std::string>& args, const std::set<std::strin
       positional_.push_back(a);
       continue;
     }
+    if (values_.count(a)) throw UsageError(a + ": given twice");
     if (flags.count(a)) {
       values_[a] = "";
     } else if (valued.count(a)) {

@@ -19,6 +19,7 @@ bool* WorkSkips::flag(const std::string& name) {
   return nullptr;
 }
 
+// "all" alone, or a comma-separated list of names.
 void WorkSkips::disable(const std::string& list) {
   if (list == "all") {
     for (const std::string& n : names()) *flag(n) = false;
@@ -29,9 +30,10 @@ void WorkSkips::disable(const std::string& list) {
   while (std::getline(in, name, ',')) {
     bool* f = flag(name);
     if (!f) {
-      std::string known = "all";
-      for (const std::string& n : names()) known += ", " + n;
-      throw std::invalid_argument("unknown skip '" + name + "' (expected " + known + ")");
+      std::string known;
+      for (const std::string& n : names()) known += (known.empty() ? "" : ", ") + n;
+      throw std::invalid_argument("unknown skip '" + name + "' (expected 'all' alone, or of " +
+                                  known + ")");
     }
     *f = false;
   }

@@ -49,6 +49,8 @@ TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
       {"export-scene cornell /tmp/x.obj", "/tmp/x.obj: expected a .glb or .gltf path"},
       {"render --fovy 40", "--fovy: only with --eyes mono"},
       {"render --out ''", "--out: empty value"},  // it wrote into the root folder
+      {"render --width 4 --width 8", "--width: given twice"},
+      {"render --no-skip all,refit", "unknown skip 'all' (expected 'all' alone"},
       {"view --scene cornell --eyes mono", "view: --eyes and --fovy are not headset options"},
   };
   for (const auto& c : cases) {
