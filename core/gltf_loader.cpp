@@ -984,6 +984,14 @@ Scene loadGltf(const std::string& path) {
     ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
   for (int root : rootNodes(ld)) placeTree(ld, root);
   if (ld.scene.meshes.empty()) ld.fail("contains no triangle meshes");
+  // Finite transforms can still carry vertices past float range (a matrix of 1e38s):
+  // every later stage would see infinities.
+  const Bounds world = ld.scene.worldBounds();
+  const auto finite = [](const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite(world.min) || !finite(world.max))
+    ld.fail("the node transforms take the geometry beyond float range (non-finite bounds)");
   return std::move(ld.scene);
 }
 

@@ -314,6 +314,16 @@ TEST(GltfLoader, BufferThatIsNotARegularFileIsAnError) {
   EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
 }
 
+// Each matrix is finite; the vertices it places are not.
+TEST(GltfLoader, TransformsBeyondFloatRangeAreAnError) {
+  const std::string matrix = R"("matrix":[3e38,0,0,0,0,3e38,0,0,0,0,3e38,0,3e38,3e38,3e38,1],)";
+  const std::string json = replaced(triangleGltf(), R"({"mesh":0)", "{" + matrix + R"("mesh":0)");
+  const std::string error = loadError(writeGltf("huge.gltf", json));
+  EXPECT_NE(error.find("huge.gltf: the node transforms take the geometry beyond float range"),
+            std::string::npos)
+      << error;
+}
+
 TEST(GltfLoader, RequiredUnsupportedExtensionIsAnError) {
   const std::string json =
       replaced(triangleGltf(), R"("scene":0,)",
