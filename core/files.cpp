@@ -1,5 +1,6 @@
 #include "core/files.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -34,6 +35,52 @@ std::string temporaryPathFor(const std::string& path) {
   const fs::path p(path);
   return (p.parent_path() / (".tmp." + std::to_string(getpid()) + "." + p.filename().string()))
       .string();
+}
+
+namespace {
+
+// The temporary file being written, removed if SIGINT, SIGTERM or SIGHUP ends the process
+// meanwhile (`timeout` sends SIGTERM): the destination is never half-written, and this
+// keeps the folder free of the temporary file too. Handlers go only where the signal's
+// disposition is still the default, and re-raise it after the removal.
+char inFlight[4096];
+volatile sig_atomic_t haveInFlight = 0;
+
+void removeInFlightAndDie(int signal) {
+  if (haveInFlight) unlink(inFlight);
+  ::signal(signal, SIG_DFL);
+  raise(signal);
+}
+
+void installRemovalHandlers() {
+  static const bool installed = [] {
+    for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction current {};
+      if (sigaction(s, nullptr, &current) == 0 && current.sa_handler == SIG_DFL) {
+        struct sigaction handler {};
+        handler.sa_handler = removeInFlightAndDie;
+        sigemptyset(&handler.sa_mask);
+        sigaction(s, &handler, nullptr);
+      }
+    }
+    return true;
+  }();
+  (void)installed;
+}
+
+}  // namespace
+
+InFlightFile::InFlightFile(const std::string& path) {
+  installRemovalHandlers();
+  if (path.size() < sizeof inFlight) {
+    haveInFlight = 0;
+    std::memcpy(inFlight, path.c_str(), path.size() + 1);
+    haveInFlight = 1;
+  }
+}
+
+InFlightFile::~InFlightFile() {
+  haveInFlight = 0;
 }
 
 namespace {
@@ -74,6 +121,7 @@ void writeFileAtomically(const std::string& path, const void* data, size_t size)
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);
   const std::string tmp = temporaryPathFor(path);
+  const InFlightFile guard(tmp);
   const std::string why = writeAndSync(tmp, data, size);
   if (!why.empty()) {
     fs::remove(tmp, ec);

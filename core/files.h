@@ -32,6 +32,16 @@ inline void writeFileAtomically(const std::string& path, const std::string& byte
 // an InputError now, not after minutes of rendering, if it cannot be a folder.
 void createOutputFolder(const std::string& dir);
 
+// While one lives, its temporary file is removed if SIGINT, SIGTERM or SIGHUP ends the
+// process (one at a time: photovr writes its files one after another).
+class InFlightFile {
+ public:
+  explicit InFlightFile(const std::string& temporaryPath);
+  ~InFlightFile();
+  InFlightFile(const InFlightFile&) = delete;
+  InFlightFile& operator=(const InFlightFile&) = delete;
+};
+
 // Renames a finished temporary file into place; on failure removes it and throws.
 void moveIntoPlace(const std::string& temporary, const std::string& path);
 

@@ -59,6 +59,7 @@ void writePixels(const std::string& path, int w, int h, int c, TypeDesc type, co
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);
   const std::string tmp = temporaryPathFor(path);
+  const InFlightFile guard(tmp);
   if (!(out->open(tmp, spec) && out->write_image(type, pixels) && out->close())) fail(tmp);
   out.reset();
   moveIntoPlace(tmp, path);

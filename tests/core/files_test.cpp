@@ -2,6 +2,8 @@
 #include "core/files.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -74,6 +76,24 @@ TEST(Files, OnlyRegularFilesAreRead) {
   std::ofstream(dir / "big") << std::string(100, 'x');
   EXPECT_NE(errorOf([&] { readRegularFile((dir / "big").string(), "x", 99); }).find("larger than"),
             std::string::npos);
+}
+
+// `timeout` ends a render with SIGTERM; the temporary file it was writing goes with it.
+TEST(Files, TemporaryFileIsRemovedWhenASignalEndsTheProcess) {
+  const fs::path dir = testing::freshTestDir("photovr_files");
+  const std::string tmp = (dir / ".tmp.1.a.exr").string();
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::ofstream(tmp) << "half";
+    const InFlightFile guard(tmp);
+    raise(SIGTERM);
+    _exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_FALSE(fs::exists(tmp));
 }
 
 }  // namespace
