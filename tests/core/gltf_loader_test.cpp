@@ -201,7 +201,7 @@ TEST(GltfLoader, StripsAndFansBecomeLists) {
   append<uint16_t>(b, {0, 1, 2});  // unused but keeps the default layout valid
   std::string strip =
       replaced(triangleGltf(b), R"("count":3,"type":"VEC3")", R"("count":4,"type":"VEC3")");
-  strip = replaced(strip, R"("byteLength":36})", R"("byteLength":48})");
+  strip = replaced(strip, R"("byteOffset":0,"byteLength":36)", R"("byteOffset":0,"byteLength":48)");
   strip = replaced(strip, R"("byteOffset":36,"byteLength":6)", R"("byteOffset":48,"byteLength":6)");
   const std::string fan = replaced(strip, R"("indices":1)", R"("mode":6)");
   strip = replaced(strip, R"("indices":1)", R"("mode":5)");
@@ -317,7 +317,8 @@ TEST(GltfLoader, BufferThatIsNotARegularFileIsAnError) {
 // Each matrix is finite; the vertices it places are not.
 TEST(GltfLoader, TransformsBeyondFloatRangeAreAnError) {
   const std::string matrix = R"("matrix":[3e38,0,0,0,0,3e38,0,0,0,0,3e38,0,3e38,3e38,3e38,1],)";
-  const std::string json = replaced(triangleGltf(), R"({"mesh":0)", "{" + matrix + R"("mesh":0)");
+  const std::string json =
+      replaced(triangleGltf(), R"("mesh":0,"name":"tri")", matrix + R"("mesh":0,"name":"tri")");
   const std::string error = loadError(writeGltf("huge.gltf", json));
   EXPECT_NE(error.find("huge.gltf: the node transforms take the geometry beyond float range"),
             std::string::npos)
