@@ -22,7 +22,8 @@ build: setup
 # The separate benchmarks, each writing a CSV to out/bench/: tracer vs raw Embree
 # (bench_trace), hybrid stage times (bench_hybrid), denoiser passes and equal-time quality
 # (bench_denoise), what each skip saves (bench_skips), compositor vs G-buffer and lens
-# sampling (bench_compositor). `photovr bench [--quick]` is the error-vs-time harness. Not
+# sampling (bench_compositor), overscan margins (bench_overscan). `photovr bench [--quick]`
+# is the error-vs-time harness. Not
 # tests: their numbers depend on the machine and its load.
 bench: build
 	./$(BUILD)/bench/photovr_bench_trace --out out/bench
@@ -30,6 +31,7 @@ bench: build
 	./$(BUILD)/bench/photovr_bench_denoise --out out/bench
 	./$(BUILD)/bench/photovr_bench_skips --out out/bench
 	./$(BUILD)/bench/photovr_bench_compositor --out out/bench
+	./$(BUILD)/bench/photovr_bench_overscan --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build and the whole test suite under it.
 asan: setup

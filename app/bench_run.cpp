@@ -66,7 +66,7 @@ struct HybridRun {
   HybridRun(const BenchConfig& cfg, const BenchScene& s, gl::Context& ctx)
       : renderer(*s.scene, cfg.width, cfg.height,
                  ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), settingsOf(cfg)),
-        maps(lensSampleMaps(cfg.sampling, cfg.width, cfg.height, cfg.spp)),
+        maps(lensSampleMaps(cfg.sampling, StereoLayout::dk2(cfg.width, cfg.height), cfg.spp)),
         c(cfg),
         view(s.view) {
     if (cfg.denoise != gl::DenoiseMode::Off) {

@@ -45,7 +45,9 @@ const char* const kViewCommandHelp =
     "  --hmd dk2|replay FILE|sim FILE|none  head tracking (default none: the desktop\n"
     "                         camera, right-drag to look, WASD/E/Q to move, Shift faster);\n"
     "                         without a DK2, dk2 falls back to the desktop camera\n"
-    "  --width W --height H   per-eye render size (default 320x360)\n"
+    "  --width W --height H   per-eye render size over the lens's field (default 320x360)\n"
+    "  --overscan DEG         render DEG beyond the lens's field on every side (0..10, default\n"
+    "                         0): head turns of up to DEG between frames show no black edge\n"
     "  --window WxH           window size (default 960x540)\n"
     "  --panel WxH            panel pixels (default: the window's; 1920x1080 with a DK2)\n"
     "  --rotate 0|90|180|270  panel output rotation (default 0; the DK2 scans at 90)\n"
@@ -75,6 +77,7 @@ struct ViewConfig {
   View view;
   HmdSpec hmd;
   int width = 320, height = 360, rotation = 0, frames = 0;
+  StereoLayout eyes;  // width x height over the lens's field, plus the overscan
   glm::ivec2 window{960, 540}, panel{0, 0};
   FrameSettings settings;
   int denoise = 2;  // index into kDenoiseModes
@@ -89,16 +92,18 @@ const char* const kModes[] = {"hybrid", "pt"};
 ViewConfig parseViewConfig(Args args) {
   ViewConfig c;
   c.hmd = extractHmdOption(args);
-  std::set<std::string> valued = {"--scene",    "--env",     "--width",   "--height",
-                                  "--window",   "--panel",   "--rotate",  "--mode",
-                                  "--spp",      "--bounces", "--denoise", "--sampling",
-                                  "--exposure", "--out",     "--frames",  "--screenshot"};
+  std::set<std::string> valued = {
+      "--scene",    "--env",  "--width",  "--height",     "--window",  "--panel",
+      "--rotate",   "--mode", "--spp",    "--bounces",    "--denoise", "--sampling",
+      "--exposure", "--out",  "--frames", "--screenshot", "--overscan"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {"--no-reproject", "--no-overlay"});
   if (!o.positional().empty())
     throw UsageError("view: unexpected argument '" + o.positional()[0] + "'");
   c.width = o.integer("--width", 320, 8, 4096);
   c.height = o.integer("--height", 360, 8, 4096);
+  c.eyes =
+      StereoLayout::dk2(c.width, c.height, glm::radians(o.number("--overscan", 0.0f, 0.0f, 10.0f)));
   c.window = parseSize(o, "--window", c.window);
   c.panel = parseSize(o, "--panel", {0, 0});
   if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");
@@ -229,11 +234,10 @@ struct Session {
     if (c.panel.x == 0)
       c.panel = dk2 ? glm::ivec2(1920, 1080) : glm::ivec2(c.window.x & ~1, c.window.y);
     renderer = std::make_unique<ViewRenderer>(
-        c.scene, c.width, c.height, context->hasExtension("GL_ARB_shader_viewport_layer_array"));
+        c.scene, c.eyes, context->hasExtension("GL_ARB_shader_viewport_layer_array"));
     gl::DenoiseParams params;
-    denoiser = std::make_unique<gl::Denoiser>(c.width, c.height, params);
-    compositor =
-        std::make_unique<HeadsetCompositor>(c.width, c.height, c.panel.x, c.panel.y, c.rotation);
+    denoiser = std::make_unique<gl::Denoiser>(c.eyes.width, c.eyes.height, params);
+    compositor = std::make_unique<HeadsetCompositor>(c.eyes, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
   }
 
@@ -283,7 +287,7 @@ struct Session {
 
   void composite(const glm::ivec2& framebuffer) {
     const auto t0 = Clock::now();
-    const auto to = headEyes(headPose(head.now() + kDisplayLatency), c.width, c.height, {});
+    const auto to = headEyes(headPose(head.now() + kDisplayLatency), c.eyes, {});
     if (shownDenoised)
       compositor->run(denoiser->linearTexture(), denoiser->depthTexture(), shown->eyes, to,
                       c.exposure, c.reproject);
@@ -307,8 +311,8 @@ int runSession(ViewConfig& c) {
   Session s(c);
   gl::WindowInputReader input(*s.context);
   std::printf("view: %s, %s; eyes %dx%d, panel %dx%d, window %dx%d\n",
-              s.context->renderer().c_str(), s.head.source->status().c_str(), c.width, c.height,
-              c.panel.x, c.panel.y, c.window.x, c.window.y);
+              s.context->renderer().c_str(), s.head.source->status().c_str(), c.eyes.width,
+              c.eyes.height, c.panel.x, c.panel.y, c.window.x, c.window.y);
   auto last = Clock::now();
   int shownFrames = 0;
   uint32_t started = 0;
@@ -322,9 +326,8 @@ int runSession(ViewConfig& c) {
       s.head.desktop->handle(desktopInput(in, float(dt * 1e-3)));
     if (auto f = s.renderer->take()) s.accept(std::move(*f));
     if (!s.renderer->busy()) {
-      s.renderer->start(
-          headEyes(s.headPose(s.head.now()), c.width, c.height, haltonJitter(started++)),
-          c.settings);
+      s.renderer->start(headEyes(s.headPose(s.head.now()), c.eyes, haltonJitter(started++)),
+                        c.settings);
     }
     if (s.shown) s.composite(in.framebufferSize);
     if (s.overlay) {

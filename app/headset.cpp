@@ -91,10 +91,12 @@ Pose composePose(const Pose& base, const Pose& tracked) {
   return p;
 }
 
-std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::vec2 jitter) {
+std::array<EyeCamera, 2> headEyes(const Pose& head, const StereoLayout& layout, glm::vec2 jitter) {
   StereoRig rig;
   rig.head = head;
-  return {rig.eye(Eye::Left, width, height, jitter), rig.eye(Eye::Right, width, height, jitter)};
+  rig.leftFov = layout.leftFov;
+  const int w = layout.width, h = layout.height;
+  return {rig.eye(Eye::Left, w, h, jitter), rig.eye(Eye::Right, w, h, jitter)};
 }
 
 gl::LensParams dk2PanelLens(int panelWidth, int panelHeight) {
@@ -104,16 +106,17 @@ gl::LensParams dk2PanelLens(int panelWidth, int panelHeight) {
   return gl::lensParamsOf(model);
 }
 
-std::array<FovTangents, 2> dk2EyeFov() {
-  const FovTangents left = FovTangents::dk2LeftEye();
-  return {left, left.mirrored()};
+std::array<FovTangents, 2> eyeFovs(const StereoLayout& layout) {
+  return {layout.fov(Eye::Left), layout.fov(Eye::Right)};
 }
 
-HeadsetCompositor::HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight,
+HeadsetCompositor::HeadsetCompositor(const StereoLayout& eyes, int panelWidth, int panelHeight,
                                      int rotation)
-    : timewarp_(dk2PanelLens(panelWidth, panelHeight), eyeWidth, eyeHeight, dk2EyeFov()),
+    : timewarp_(dk2PanelLens(panelWidth, panelHeight), eyes.width, eyes.height, eyeFovs(eyes)),
       output_(panelWidth, panelHeight, rotation),
-      uploaded_(eyeWidth, eyeHeight) {}
+      uploaded_(eyes.width, eyes.height) {
+  timewarp_.setShownField({eyes.field(Eye::Left), eyes.field(Eye::Right)});
+}
 
 void HeadsetCompositor::run(unsigned colorArray, unsigned depthArray,
                             const std::array<EyeCamera, 2>& from,

@@ -42,16 +42,16 @@ std::unique_ptr<hmd::HeadPoseSource> openHeadPoseSource(const HmdSpec& spec, boo
 // A tracked pose is relative to the scene's camera: head = base * tracked.
 Pose composePose(const Pose& base, const Pose& tracked);
 
-// Both eyes of a head pose at the DK2's FOV (core/camera.h StereoRig).
-std::array<EyeCamera, 2> headEyes(const Pose& head, int width, int height, glm::vec2 jitter);
+// Both eyes of a head pose in 'layout' (core/camera.h StereoRig).
+std::array<EyeCamera, 2> headEyes(const Pose& head, const StereoLayout& layout, glm::vec2 jitter);
 
 // Re-projection of a frame's two eyes to a newer pose, the lens, and the panel output, in
 // one pass (gl/timewarp.h).
 class HeadsetCompositor {
  public:
-  // eyeWidth x eyeHeight eyes with the DK2 FOV onto a panelWidth x panelHeight panel
-  // (the DK2's physical panel at that pixel count), output turned by 'rotation'.
-  HeadsetCompositor(int eyeWidth, int eyeHeight, int panelWidth, int panelHeight, int rotation);
+  // Eyes laid out as 'eyes' onto a panelWidth x panelHeight panel (the DK2's physical panel
+  // at that pixel count), output turned by 'rotation'.
+  HeadsetCompositor(const StereoLayout& eyes, int panelWidth, int panelHeight, int rotation);
 
   // 'colorArray'/'depthArray' (2-layer, linear colour / reversed-Z depth) were rendered
   // with 'from'; shown at 'to'. reproject = false shows the frame as rendered.
@@ -73,10 +73,10 @@ class HeadsetCompositor {
   gl::EyeArrays uploaded_;
 };
 
-// The DK2 lens at a panel's pixel count (hmd::LensModel defaults, dk2.md §2, §6) and the
-// DK2 eye FOVs, as the compositor uses them.
+// The DK2 lens at a panel's pixel count (hmd::LensModel defaults, dk2.md §2, §6), and both
+// eyes' FOVs of a layout, as the compositor uses them.
 gl::LensParams dk2PanelLens(int panelWidth, int panelHeight);
-std::array<FovTangents, 2> dk2EyeFov();
+std::array<FovTangents, 2> eyeFovs(const StereoLayout& layout);
 
 // GL's bottom-up RGBA8 rows to a top-down RGB image.
 Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height);

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -43,6 +44,10 @@ const char* const kHmdRenderHelp =
     "  --latency-ms L         and re-projected to the pose of t + L (default 1000 / F)\n"
     "  --panel WxH            panel pixels (default 1920x1080, the DK2's)\n"
     "  --rotate 0|90|180|270  panel output rotation (default 0; the DK2 scans at 90)\n"
+    "  --overscan DEG         render the eyes DEG beyond the lens's field on every side (0..10,\n"
+    "                         default 0): a head turn of up to DEG re-projects without a\n"
+    "                         black edge; the eye images grow to keep --width x --height\n"
+    "                         over the lens's field\n"
     "  writes per frame NNNN_left.png, NNNN_right.png (undistorted, as rendered) and\n"
     "  NNNN_panel.png (re-projected, distorted), and hmd_frames.csv (times, poses,\n"
     "  disoccluded fractions)\n";
@@ -96,15 +101,17 @@ struct FrameTimes {
 
 HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd) {
   Args taken;
-  for (const char* name : {"--fps", "--latency-ms", "--rotate", "--panel"})
-    takeOption(args, name, taken);
+  const std::set<std::string> names = {"--fps", "--latency-ms", "--rotate", "--panel",
+                                       "--overscan"};
+  for (const std::string& name : names) takeOption(args, name, taken);
   HmdSequenceOptions o;
   if (taken.empty()) return o;
   if (hmd.kind == "none") throw UsageError(taken[0] + ": needs --hmd sim|replay|dk2");
-  const Options opts(taken, {"--fps", "--latency-ms", "--rotate", "--panel"}, {});
+  const Options opts(taken, names, {});
   o.fps = opts.number("--fps", 30.0f, 0.1f, 1000.0f);
   o.latencyMs = opts.number("--latency-ms", -1.0f, 0.0f, 10000.0f);
   o.rotation = std::stoi(opts.choice("--rotate", "0", {"0", "90", "180", "270"}));
+  o.overscanDeg = opts.number("--overscan", 0.0f, 0.0f, 10.0f);
   if (opts.has("--panel")) {
     const glm::ivec2 p = parsePanelSize(opts.text("--panel", ""));
     o.panelWidth = p.x, o.panelHeight = p.y;
@@ -114,11 +121,11 @@ HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd) {
 
 namespace {
 
-std::unique_ptr<gl::Denoiser> makeDenoiser(const RenderRequest& r) {
+std::unique_ptr<gl::Denoiser> makeDenoiser(const RenderRequest& r, const StereoLayout& eyes) {
   if (gl::parseDenoiseMode(r.denoise) == gl::DenoiseMode::Off) return nullptr;
   gl::DenoiseParams params;
   params.exposure = r.exposure;
-  return std::make_unique<gl::Denoiser>(r.width, r.height, params);
+  return std::make_unique<gl::Denoiser>(eyes.width, eyes.height, params);
 }
 
 // hmd_frames.csv, kept in memory and written complete at the end (core/files.h),
@@ -142,20 +149,20 @@ class HmdSequence {
  public:
   HmdSequence(const RenderRequest& r, const HmdSequenceOptions& o)
       : r_(r),
+        eyes_(StereoLayout::dk2(r.width, r.height, float(glm::radians(o.overscanDeg)))),
         context_(createRenderContext(r.backend)),
-        renderer_(r.scene, r.width, r.height,
+        renderer_(r.scene, eyes_.width, eyes_.height,
                   context_->hasExtension("GL_ARB_shader_viewport_layer_array"), traceSettingsOf(r)),
-        denoiser_(makeDenoiser(r)),
-        compositor_(r.width, r.height, o.panelWidth, o.panelHeight, o.rotation),
-        maps_(lensSampleMaps(r.sampling, r.width, r.height, r.spp)),
+        denoiser_(makeDenoiser(r, eyes_)),
+        compositor_(eyes_, o.panelWidth, o.panelHeight, o.rotation),
+        maps_(lensSampleMaps(r.sampling, eyes_, r.spp)),
         log_(r.outDir) {}
 
   // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
   void frame(int k, const FrameTimes& t, const Pose& trackedA, const Pose& trackedB) {
-    const auto from = headEyes(composePose(r_.view.head, trackedA), r_.width, r_.height,
-                               haltonJitter(uint32_t(k)));
-    const auto to =
-        headEyes(composePose(r_.view.head, trackedB), r_.width, r_.height, glm::vec2(0));
+    const auto from =
+        headEyes(composePose(r_.view.head, trackedA), eyes_, haltonJitter(uint32_t(k)));
+    const auto to = headEyes(composePose(r_.view.head, trackedB), eyes_, glm::vec2(0));
     const auto tr = Clock::now();
     auto eyes = render(from, k);
     const double renderMs = msSince(tr);
@@ -178,11 +185,12 @@ class HmdSequence {
     log_.close();
     const double n = r_.frames;
     std::printf(
-        "%d frames %dx%d per eye -> panel %dx%d (rotation %d): render %.1f ms/frame (denoise "
-        "%s), compositor (re-projection + distortion + output) %.1f ms/frame\nwrote "
-        "%s/NNNN_{left,right,panel}.png and %s/hmd_frames.csv\n",
-        r_.frames, r_.width, r_.height, o.panelWidth, o.panelHeight, o.rotation, renderTotal_ / n,
-        r_.denoise.c_str(), compositorTotal_ / n, r_.outDir.c_str(), r_.outDir.c_str());
+        "%d frames %dx%d per eye (overscan %.3g deg) -> panel %dx%d (rotation %d): render %.1f "
+        "ms/frame (denoise %s), compositor (re-projection + distortion + output) %.1f "
+        "ms/frame\nwrote %s/NNNN_{left,right,panel}.png and %s/hmd_frames.csv\n",
+        r_.frames, eyes_.width, eyes_.height, o.overscanDeg, o.panelWidth, o.panelHeight,
+        o.rotation, renderTotal_ / n, r_.denoise.c_str(), compositorTotal_ / n, r_.outDir.c_str(),
+        r_.outDir.c_str());
   }
 
  private:
@@ -216,7 +224,7 @@ class HmdSequence {
       const char* eye = e == 0 ? "left" : "right";
       if (denoiser_)
         writeImage(frameName(r_, k, eye),
-                   flipToImage(denoiser_->readDisplay(e), r_.width, r_.height));
+                   flipToImage(denoiser_->readDisplay(e), eyes_.width, eyes_.height));
       else
         writeImage(frameName(r_, k, eye), sideBySide({&eyes[e]}, r_.exposure));
     }
@@ -225,6 +233,7 @@ class HmdSequence {
   }
 
   const RenderRequest& r_;
+  StereoLayout eyes_;
   std::unique_ptr<gl::Context> context_;
   HybridRenderer renderer_;
   std::unique_ptr<gl::Denoiser> denoiser_;

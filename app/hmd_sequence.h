@@ -13,10 +13,11 @@ struct HmdSequenceOptions {
   double latencyMs = -1.0;  // render start -> display; < 0: one renderer frame (1000 / fps)
   int rotation = 0;         // panel output rotation (90 = the DK2's native portrait scan)
   int panelWidth = 1920, panelHeight = 1080;
+  double overscanDeg = 0.0;  // eye buffers this far beyond the lens's field (StereoLayout)
 };
 
-// Removes --fps, --latency-ms, --rotate and --panel WxH from 'args'; they are accepted only
-// with an --hmd other than none.
+// Removes --fps, --latency-ms, --rotate, --panel WxH and --overscan from 'args'; they are
+// accepted only with an --hmd other than none.
 HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd);
 
 int renderHmdSequence(const RenderRequest& request, const HmdSpec& hmd,

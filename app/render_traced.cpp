@@ -204,7 +204,7 @@ int renderHybridMode(const RenderRequest& r) {
     denoiser = std::make_unique<gl::Denoiser>(r.width, r.height, paramsOf(r));
   }
   double denoiseMs = 0.0;
-  const auto maps = lensSampleMaps(r.sampling, r.width, r.height, r.spp);
+  const auto maps = lensSampleMaps(r.sampling, StereoLayout::dk2(r.width, r.height), r.spp);
   const std::array<const std::vector<uint16_t>*, 2> mapPtrs = {
       maps[0].empty() ? nullptr : &maps[0], maps[1].empty() ? nullptr : &maps[1]};
   std::printf("sampling: %s (%s)\n", r.sampling.c_str(), describeSampleMaps(maps).c_str());

@@ -7,21 +7,22 @@
 
 namespace photovr::app {
 
-std::array<std::vector<uint16_t>, 2> lensSampleMaps(const std::string& kind, int w, int h,
-                                                    int spp) {
+std::array<std::vector<uint16_t>, 2> lensSampleMaps(const std::string& kind,
+                                                    const StereoLayout& layout, int spp) {
   std::array<std::vector<uint16_t>, 2> maps;
   if (kind == "uniform") return maps;
   const hmd::LensModel lens;  // the documented DK2 defaults (dk2.md §6)
   for (int e = 0; e < 2; ++e) {
     hmd::EyeBufferSpec spec;
     spec.eye = e == 0 ? Eye::Left : Eye::Right;
-    spec.fov = e == 0 ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
-    spec.width = w;
-    spec.height = h;
+    spec.fov = layout.fov(spec.eye);
+    spec.width = layout.width;
+    spec.height = layout.height;
+    spec.overscan = layout.overscan;
     if (kind == "lens-matched") {
       maps[e] = hmd::lensMatchedSpp(lens, spec, spp);
     } else if (kind == "thesis-zones") {
-      maps[e] = hmd::thesisZoneSpp(w, h, spp);
+      maps[e] = hmd::thesisZoneSpp(spec.width, spec.height, spp);
     } else {
       const std::vector<uint8_t> hidden = hmd::hiddenAreaMask(lens, spec);
       maps[e].resize(hidden.size());

@@ -16,15 +16,13 @@ constexpr int kLensMapSpp = 64;
 
 }  // namespace
 
-ViewRenderer::ViewRenderer(const Scene& scene, int w, int h, bool hasLayerExtension)
+ViewRenderer::ViewRenderer(const Scene& scene, const StereoLayout& eyes, bool hasLayerExtension)
     : scene_(scene),
-      width_(w),
-      height_(h),
       gpu_(scene),
-      pass_(w, h, hasLayerExtension, gl::EyeRouting::Layered),
+      pass_(eyes.width, eyes.height, hasLayerExtension, gl::EyeRouting::Layered),
       embree_(scene),
       lights_(scene),
-      lensMaps_(lensSampleMaps("lens-matched", w, h, kLensMapSpp)),
+      lensMaps_(lensSampleMaps("lens-matched", eyes, kLensMapSpp)),
       worker_([this] { workerLoop(); }) {}
 
 ViewRenderer::~ViewRenderer() {

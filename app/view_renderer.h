@@ -40,7 +40,7 @@ struct FinishedFrame {
 class ViewRenderer {
  public:
   // The GL context must be current on the calling thread; 'scene' must outlive this.
-  ViewRenderer(const Scene& scene, int eyeWidth, int eyeHeight, bool hasLayerExtension);
+  ViewRenderer(const Scene& scene, const StereoLayout& eyes, bool hasLayerExtension);
   ~ViewRenderer();
   ViewRenderer(const ViewRenderer&) = delete;
   ViewRenderer& operator=(const ViewRenderer&) = delete;
@@ -61,7 +61,6 @@ class ViewRenderer {
   FinishedFrame trace(FinishedFrame job, const std::array<gl::GBufferImage, 2>& g);
 
   const Scene& scene_;
-  int width_, height_;
   gl::SceneGpu gpu_;
   gl::GBufferPass pass_;
   EmbreeScene embree_;

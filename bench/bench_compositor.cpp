@@ -20,6 +20,7 @@
 
 #include "app/headset.h"
 #include "bench/bench_cli.h"
+#include "bench/pass_timing.h"
 #include "core/builtin_scenes.h"
 #include "core/error_metrics.h"
 #include "core/huge_pages.h"
@@ -45,30 +46,14 @@ struct Config {
 };
 
 std::array<EyeCamera, 2> sceneEyes(const Scene& s, int w, int h, glm::vec2 jitter) {
-  return app::headEyes(poseOf(s.cameras.at(0)), w, h, jitter);
+  return app::headEyes(poseOf(s.cameras.at(0)), StereoLayout::dk2(w, h), jitter);
 }
 
 // A small head turn (1.5 deg yaw, 1 cm): what a refresh re-projects over.
 std::array<EyeCamera, 2> movedEyes(const Scene& s, int w, int h) {
-  Pose p = poseOf(s.cameras.at(0));
-  p.orientation =
-      glm::normalize(p.orientation * glm::angleAxis(glm::radians(1.5f), glm::vec3(0, 1, 0)));
-  p.position += p.orientation * glm::vec3(0.01f, 0.0f, 0.0f);
-  return app::headEyes(p, w, h, glm::vec2(0.0f));
+  const Pose p = turnedHead(s, 1.5f, glm::vec3(0.01f, 0.0f, 0.0f));
+  return app::headEyes(p, StereoLayout::dk2(w, h), glm::vec2(0.0f));
 }
-
-std::array<glm::mat4, 2> viewProjections(const std::array<EyeCamera, 2>& eyes) {
-  std::array<glm::mat4, 2> vp;
-  for (int e = 0; e < 2; ++e) vp[e] = eyes[e].unjitteredProjection() * eyes[e].view();
-  return vp;
-}
-
-// Wall time and process CPU time of a pass (llvmpipe runs GL on the CPU, so CPU time is
-// the work; it stays put when something else shares the cores, wall time does not).
-struct PassTime {
-  double wall = 0, cpu = 0;
-  PassTime operator+(const PassTime& o) const { return {wall + o.wall, cpu + o.cpu}; }
-};
 
 // What a pass shows at a pose against the truth there: the distortion chain on the G-buffer
 // rendered at that pose (core/error_metrics.h panelDifference: 8-bit levels where both show
@@ -91,37 +76,16 @@ struct Timing {
   PassTime chain() const { return gridReproject + distort + output; }
 };
 
-// The fastest of 'repeats' rounds per pass (the least disturbed: the machine is shared, and
-// its other load only ever adds time), the passes alternating within each round so that a
-// busy spell falls on all of them; one warm-up round first (llvmpipe compiles shader
-// variants on first use).
-std::vector<PassTime> bestOfRounds(int repeats, const std::vector<std::function<void()>>& passes) {
-  std::vector<PassTime> best(passes.size(), {1e300, 1e300});
-  for (int round = 0; round <= repeats; ++round)
-    for (size_t p = 0; p < passes.size(); ++p) {
-      const auto t0 = Clock::now();
-      const double c0 = processCpuMs();
-      passes[p]();
-      gl::waitForGpu();
-      const PassTime t{msSince(t0), processCpuMs() - c0};
-      if (round > 0) best[p] = {std::min(best[p].wall, t.wall), std::min(best[p].cpu, t.cpu)};
-    }
-  return best;
-}
-
 // The head turned only (no parallax): the timewarp's cheapest case, one depth fetch.
 std::array<EyeCamera, 2> turnedEyes(const Scene& s, int w, int h) {
-  Pose p = poseOf(s.cameras.at(0));
-  p.orientation =
-      glm::normalize(p.orientation * glm::angleAxis(glm::radians(1.5f), glm::vec3(0, 1, 0)));
-  return app::headEyes(p, w, h, glm::vec2(0.0f));
+  return app::headEyes(turnedHead(s, 1.5f), StereoLayout::dk2(w, h), glm::vec2(0.0f));
 }
 
 Timing timeScene(const std::string& name, const Config& c, bool layered) {
   const Scene scene = makeBuiltinScene(name);
   const gl::SceneGpu gpu(scene);
   gl::GBufferPass pass(c.eyeW, c.eyeH, layered, gl::EyeRouting::Layered);
-  app::HeadsetCompositor comp(c.eyeW, c.eyeH, c.panelW, c.panelH, 90);
+  app::HeadsetCompositor comp(StereoLayout::dk2(c.eyeW, c.eyeH), c.panelW, c.panelH, 90);
   const auto from = sceneEyes(scene, c.eyeW, c.eyeH, glm::vec2(0.0f));
   const auto to = movedEyes(scene, c.eyeW, c.eyeH);
   const auto turned = turnedEyes(scene, c.eyeW, c.eyeH);
@@ -133,7 +97,8 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
   gl::ReprojectParams params;
   params.gridStep = 2;
   gl::Reprojector grid(c.eyeW, c.eyeH, params);
-  gl::Distorter distorter(app::dk2PanelLens(c.panelW, c.panelH), c.eyeW, c.eyeH, app::dk2EyeFov());
+  gl::Distorter distorter(app::dk2PanelLens(c.panelW, c.panelH), c.eyeW, c.eyeH,
+                          app::eyeFovs(StereoLayout::dk2(c.eyeW, c.eyeH)));
   const auto best = bestOfRounds(
       c.repeats,
       {[&] { pass.render(gpu, from, vp); }, [&] { comp.run(color, depth, from, to, 1.0f); },

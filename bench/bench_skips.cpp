@@ -189,7 +189,7 @@ void benchScene(const std::string& name, bool layers, const Config& o, Printer& 
     noted(on);
     p.row(name, skip, "", on, off);
   }
-  const auto maps = app::lensSampleMaps("hidden-area", o.width, o.height, 1);
+  const auto maps = app::lensSampleMaps("hidden-area", StereoLayout::dk2(o.width, o.height), 1);
   const auto [hidden, uniform] = timePair(base, {&maps[0], &maps[1]}, base, {}, scene, o);
   noted(uniform);
   p.row(name, "hidden-area", app::describeSampleMaps(maps), hidden, uniform);

@@ -1,5 +1,6 @@
 #include "core/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,6 +19,37 @@ glm::mat4 Pose::fromWorld() const {
 FovTangents FovTangents::symmetric(float yfov, float aspect) {
   const float t = std::tan(0.5f * yfov);
   return {t * aspect, t * aspect, t, t};
+}
+
+FovTangents FovTangents::widened(float radians) const {
+  // An edge tan = t holds directions of azimuth atan(t) about the edge's axis (the left and
+  // right edges: about y), at every elevation. A cone of half-angle a around a direction at
+  // elevation b reaches azimuths asin(sin a / cos b) further (right spherical triangle
+  // pole-centre-tangent point); the field's corner has the highest elevation,
+  // tan b = corner / sqrt(1 + t^2).
+  const double a = radians;
+  const auto out = [a](double t, double corner) {
+    const double b = std::atan(corner / std::sqrt(1.0 + t * t));
+    const double turn = std::asin(std::min(1.0, std::sin(a) / std::cos(b)));
+    return float(std::tan(std::min(std::atan(t) + turn, 1.5)));  // 1.5 rad: 86 deg, finite
+  };
+  const double vertical = std::max(up, down), horizontal = std::max(left, right);
+  return {out(left, vertical), out(right, vertical), out(up, horizontal), out(down, horizontal)};
+}
+
+StereoLayout StereoLayout::dk2(int fieldWidth, int fieldHeight, float overscanRadians) {
+  const FovTangents field = FovTangents::dk2LeftEye();
+  StereoLayout l;
+  l.overscan = overscanRadians;
+  l.leftField = field;
+  l.leftFov = field.widened(overscanRadians);
+  // The same pixels per tan-angle as the field; rounded up so the field stays inside.
+  const auto grown = [overscanRadians](int n, float span, float widened) {
+    return overscanRadians == 0.0f ? n : int(std::ceil(n * double(widened) / span - 1e-9));
+  };
+  l.width = grown(fieldWidth, field.left + field.right, l.leftFov.left + l.leftFov.right);
+  l.height = grown(fieldHeight, field.up + field.down, l.leftFov.up + l.leftFov.down);
+  return l;
 }
 
 glm::vec3 EyeCamera::rayBase() const {

@@ -28,6 +28,10 @@ struct FovTangents {
   static FovTangents dk2LeftEye() { return {1.0587f, 1.0924f, 1.3293f, 1.3293f}; }
   static FovTangents symmetric(float yfov, float aspect);
   FovTangents mirrored() const { return {right, left, up, down}; }  // left eye -> right eye
+  // The smallest FOV holding every direction within 'radians' of this one (the bounding
+  // box of the field grown by that angle). An edge moves out by more than the angle: the
+  // farthest direction from it is that of a field corner turned about the edge's axis.
+  FovTangents widened(float radians) const;
 };
 
 enum class Eye : int { Left = 0, Right = 1 };
@@ -35,6 +39,23 @@ constexpr float kDefaultIpd = 0.0635f;  // metres; DK2 lens separation (dk2.md ย
 // DK2 panel: 1920x1080 landscape, 960x1080 per eye (dk2.md ยง5).
 constexpr int kDk2EyeWidth = 960;
 constexpr int kDk2EyeHeight = 1080;
+
+// The eye buffers of a headset frame: their size and FOV. Overscan renders them a margin
+// beyond the lens's field on every side, at the field's pixels per tan-angle (the buffers
+// grow), so that re-projecting to a head turned by up to the margin finds rendered pixels
+// where it would otherwise show black (gl/timewarp.h). The panel still shows the field
+// alone; the margin is not traced where the lens cannot reach it even after such a turn
+// (hmd/lens_maps.h hiddenAreaMask).
+struct StereoLayout {
+  int width = kDk2EyeWidth, height = kDk2EyeHeight;   // pixels, overscan included
+  FovTangents leftFov = FovTangents::dk2LeftEye();    // the buffer's; the right eye mirrors it
+  FovTangents leftField = FovTangents::dk2LeftEye();  // the lens's field the panel shows
+  float overscan = 0.0f;                              // radians beyond the field
+  // The DK2's field at fieldWidth x fieldHeight, widened by 'overscanRadians' per side.
+  static StereoLayout dk2(int fieldWidth, int fieldHeight, float overscanRadians = 0.0f);
+  FovTangents fov(Eye e) const { return e == Eye::Left ? leftFov : leftFov.mirrored(); }
+  FovTangents field(Eye e) const { return e == Eye::Left ? leftField : leftField.mirrored(); }
+};
 
 // One eye's camera for one frame.
 struct EyeCamera {

@@ -13,7 +13,7 @@
 namespace photovr::gl {
 namespace {
 
-static_assert(sizeof(shared::TimewarpEye) == 64 + 4 * 16, "std140 TimewarpEye");
+static_assert(sizeof(shared::TimewarpEye) == 64 + 5 * 16, "std140 TimewarpEye");
 static_assert(sizeof(shared::TimewarpUniforms) == 2 * sizeof(shared::TimewarpEye) + 3 * 16,
               "std140 TimewarpUniforms");
 
@@ -27,13 +27,14 @@ float largestUsableRho(float cz) {
   return cz < 0.0f ? 0.999f / -cz : std::numeric_limits<float>::max();
 }
 
-shared::TimewarpEye eyeUniforms(const EyeCamera& a, const EyeCamera& b) {
+shared::TimewarpEye eyeUniforms(const EyeCamera& a, const EyeCamera& b, const FovTangents& field) {
   shared::TimewarpEye w{};
   w.bToA = a.view() * b.pose.toWorld();
   w.aFov = {a.fov.left, a.fov.right, a.fov.up, a.fov.down};
   w.aPixel = {a.jitter.x, a.jitter.y, a.znear, b.znear};
   w.bFov = {b.fov.left, b.fov.right, b.fov.up, b.fov.down};
   w.bPixel = {b.jitter.x, b.jitter.y, largestUsableRho(w.bToA[3].z), 0.0f};
+  w.bField = {field.left, field.right, field.up, field.down};
   return w;
 }
 
@@ -134,7 +135,8 @@ void Timewarp::setUniforms(const std::array<EyeCamera, 2>& from, const std::arra
       throw UsageError("timewarp: cameras of eye " + std::to_string(e) + " are not " +
                        std::to_string(eyeWidth_) + "x" + std::to_string(eyeHeight_));
   shared::TimewarpUniforms u{};
-  for (int e = 0; e < eyeCount; ++e) u.eye[e] = eyeUniforms(from[e], to[e]);
+  for (int e = 0; e < eyeCount; ++e)
+    u.eye[e] = eyeUniforms(from[e], to[e], field_ ? (*field_)[size_t(e)] : to[e].fov);
   u.params = {params_.depthRatio, params_.stepPixels, float(params_.maxSteps), exposure};
   u.size = {eyeWidth_, eyeHeight_, panelWidth_, panelHeight_};
   u.mode = {0, rotation, tiles_.x, tiles_.y};

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,9 @@ class Timewarp {
   ReprojectStats stats(int eye) const;
 
   void setParams(const TimewarpParams& p) { params_ = p; }
+  // The tangents the panel shows per eye (overscan: the lens's field, inside the eye buffers'
+  // FOV); directions beyond are shown as the field's edge. Default: the eye buffer's FOV.
+  void setShownField(const std::array<FovTangents, 2>& field) { field_ = field; }
   int eyeWidth() const { return eyeWidth_; }
   int eyeHeight() const { return eyeHeight_; }
 
@@ -85,6 +89,7 @@ class Timewarp {
   int eyeWidth_, eyeHeight_, panelWidth_, panelHeight_;
   glm::ivec2 tiles_;
   TimewarpParams params_;
+  std::optional<std::array<FovTangents, 2>> field_;  // setShownField
   Program panelProgram_, asRenderedProgram_, eyeProgram_, tileProgram_;
   unsigned uniforms_ = 0, stats_ = 0, linearSampler_ = 0;
   std::vector<bool> lensSees_;        // per landscape panel texel, as stored

@@ -17,11 +17,14 @@ struct EyeBufferSpec {
   Eye eye = Eye::Left;
   FovTangents fov = FovTangents::dk2LeftEye();  // the FOV the eye buffer is rendered with
   int width = kDk2EyeWidth, height = kDk2EyeHeight;
+  double overscan = 0.0;  // radians by which 'fov' exceeds the lens's field (StereoLayout)
 };
 
 // 1 = hidden: for every channel the pixel's centre maps to a screen point the lens does
 // not show (lensSees), and so does every pixel within 'dilate' pixels (the distortion
-// pass's bilinear taps reach one texel beyond the sample point).
+// pass's bilinear taps reach one texel beyond the sample point). With overscan, a pixel
+// whose direction is within that angle of one the lens shows is visible too: what a
+// re-projection to a head turned by up to the overscan shows is traced.
 std::vector<uint8_t> hiddenAreaMask(const LensModel& m, const EyeBufferSpec& spec, int dilate = 1);
 
 // Reference for the distortion pass: 1 for every eye-buffer texel some display pixel of
@@ -33,6 +36,7 @@ std::vector<uint8_t> distortionFootprint(const LensModel& m, const EyeBufferSpec
 // display pixel in tan-angle space is |det d(tan)/d(screen px)|, that of an eye-buffer
 // pixel is constant. 0 where hidden. Highest at the lens centre, where one display pixel
 // subtends the smallest angle (the barrel pre-distortion stretches the periphery).
+// Overscan pixels the lens shows only after a head turn get the lowest density it shows.
 std::vector<float> lensDensity(const LensModel& m, const EyeBufferSpec& spec);
 
 // spp = ceil(maxSpp * density / max density), at least 1; 0 for hidden pixels (not traced).

@@ -76,6 +76,7 @@ struct TimewarpEye {
   vec4 aPixel;  // A's jitter (xy), A's znear (z), B's znear (w)
   vec4 bFov;    // B's tangents (eye mode: B's pixel -> tan-angle)
   vec4 bPixel;  // B's jitter (xy, eye mode), the largest usable 1/distance in A (z), -
+  vec4 bField;  // the tangents the panel shows at B (panel mode): the lens's field, or B's
 };
 
 struct TimewarpUniforms {

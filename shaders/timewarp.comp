@@ -167,11 +167,15 @@ ivec2 sourceTexel(ivec2 o) {
   return o;
 }
 
-// Beyond the eye buffer's edge the panel shows its edge texels, as the distortion pass's
-// clamp-to-edge filter does: a tan-angle clamped to B's outermost texel centres.
+// Beyond the field the panel shows (the eye buffer's edge, or with overscan the lens's
+// field inside it) the panel shows the field's edge, as the distortion pass's clamp-to-edge
+// filter does: a tan-angle clamped to it and to B's outermost texel centres. With overscan
+// the margin around the field is then there for the turn alone: a head turned within it
+// finds rendered texels for every direction shown.
 vec2 clampToEyeBuffer(TimewarpEye w, vec2 t) {
   vec2 halfTexel = 0.5 * vec2(w.bFov.x + w.bFov.y, w.bFov.z + w.bFov.w) / vec2(u.size.xy);
-  return clamp(t, -w.bFov.xw + halfTexel, w.bFov.yz - halfTexel);
+  vec2 lo = max(-w.bFov.xw + halfTexel, -w.bField.xw), hi = min(w.bFov.yz - halfTexel, w.bField.yz);
+  return clamp(t, lo, hi);
 }
 
 void main() {

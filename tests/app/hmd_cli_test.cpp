@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/camera.h"
 #include "core/image_io.h"
 #include "hmd/recording.h"
 #include "hmd/synthetic.h"
@@ -58,6 +59,34 @@ TEST(HmdCli, SimSequenceWritesEyesPanelAndTimes) {
   EXPECT_NEAR(rows[1][4], 0.01, 1e-5);
 }
 
+TEST(HmdCli, OverscanRendersWiderEyesAndCoversTheTurn) {
+  const std::string dir = tempDir("hmd-overscan");
+  // 60 deg/s: the frame shown at 1/30 s is re-projected over a 2 deg turn.
+  std::ofstream(dir + "/poses.csv") << "t,x,y,z,yaw,pitch,roll\n0,0,0,0,0,0,0\n1,0,0,0,60,0,0\n";
+  const std::string common = "render --hmd sim " + dir + "/poses.csv --frames 1 --scene cornell " +
+                             "--width 48 --height 54 --panel 192x108 --denoise off --out ";
+  auto r = runPhotovr(common + dir + "/plain");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runPhotovr(common + dir + "/over --overscan 3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The eyes grow by 3 deg a side at the field's pixels per tan-angle (core/camera.h).
+  const Image8 left = readImageRGBA8(dir + "/over/0000_left.png");
+  EXPECT_EQ(left.width, StereoLayout::dk2(48, 54, glm::radians(3.0f)).width);
+  EXPECT_GT(left.width, 48);
+  EXPECT_GT(left.height, 54);
+  // The panel is the same size. The plain frame leaves the strip the turn brings in
+  // uncovered (measured: 6.3 % of the lens-visible pixels disoccluded); the overscanned one
+  // only the parallax disocclusions, filled (1.6 %): the head turns about its centre, so
+  // the eyes move 1 mm, and at 48x54 pixels every silhouette pixel counts.
+  const auto plain = readCsv(dir + "/plain/hmd_frames.csv");
+  const auto over = readCsv(dir + "/over/hmd_frames.csv");
+  ASSERT_EQ(plain.size(), 1u);
+  ASSERT_EQ(over.size(), 1u);
+  EXPECT_NEAR(over[0][3], 2.0, 1e-3);  // rotation_delta_deg
+  EXPECT_LT(over[0][5] + over[0][6], (plain[0][5] + plain[0][6]) / 3);
+  EXPECT_EQ(readImageRGBA8(dir + "/over/0000_panel.png").width, 192);
+}
+
 TEST(HmdCli, ReplayedRecordingDrivesTheHead) {
   const std::string dir = tempDir("hmd-replay");
   hmd::MotionScript motion;
@@ -95,6 +124,8 @@ TEST(HmdCli, BadHeadsetInputIsAOneLineError) {
       {"--hmd sim " + dir + "/bad.csv --frames 0", "--frames: 0 is out of range", 2},
       {"--hmd vive", "--hmd: 'vive' is not one of", 2},
       {"--fps 10", "--fps: needs --hmd", 2},
+      {"--overscan 2", "--overscan: needs --hmd", 2},
+      {"--hmd sim " + dir + "/bad.csv --overscan 11", "--overscan: 11 is out of range", 2},
   };
   for (const Case& c : cases) {
     const auto r = runPhotovr("render" + std::string(kTiny) + " --out " + dir + "/out " + c.args);
@@ -114,6 +145,7 @@ TEST(HmdCli, ViewRejectsBadInputBeforeOpeningAWindow) {
       {"--frames 0", "--frames: 0 is out of range", 2},
       {"--screenshot " + dir + "/x.png", "--screenshot: needs --frames", 2},
       {"--window 10", "--window: '10' is not WIDTHxHEIGHT", 2},
+      {"--overscan -1", "--overscan: -1 is out of range", 2},
   };
   for (const Case& c : cases) {
     const auto r = runPhotovr("view --scene cornell " + c.args);

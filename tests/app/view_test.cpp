@@ -41,8 +41,9 @@ TEST(View, DrawsTheOverlayOverTheCompositedFrameUnderXvfb) {
   std::ofstream(script) << "t,x,y,z,yaw,pitch,roll\n0,0,0,0,0,0,0\n10,0,0,0,0,0,0\n";
   const std::string base = std::string("xvfb-run -a -s '-screen 0 1280x720x24' ") + PHOTOVR_BINARY +
                            " view --scene cornell --hmd sim " + script +
-                           " --width 64 --height 72 --window " + std::to_string(kWindowW) + "x" +
-                           std::to_string(kWindowH) + " --frames 3 --screenshot ";
+                           " --width 64 --height 72 --overscan 2 --window " +
+                           std::to_string(kWindowW) + "x" + std::to_string(kWindowH) +
+                           " --frames 3 --screenshot ";
   for (const char* variant : {"overlay", "plain"}) {
     const std::string cmd = base + dir + "/" + variant + ".png" +
                             (std::string(variant) == "plain" ? " --no-overlay" : "") + " 2>&1";

@@ -1,7 +1,10 @@
 #include "core/camera.h"
 
+#include <cmath>
 #include <limits>
 
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 namespace photovr {
@@ -70,6 +73,53 @@ TEST(StereoRig, EyesAreIpdApartAlongHeadX) {
   const glm::vec3 headX = rig.head.orientation * glm::vec3(1, 0, 0);
   EXPECT_NEAR(glm::dot(r.pose.position - l.pose.position, headX), kDefaultIpd, 1e-6f);
   EXPECT_EQ(l.fov.left, r.fov.right);  // mirrored: outer <-> nasal
+}
+
+TEST(FovTangents, WidenedHoldsEveryDirectionWithinTheAngleOfTheField) {
+  const FovTangents f = FovTangents::dk2LeftEye();
+  const double a = glm::radians(3.0);
+  const FovTangents w = f.widened(float(a));
+  // Directions at exactly 'a' from the field's boundary, all around it: each must fall inside
+  // 'w', and for each edge one of them must touch it (float: 1e-5 relative).
+  double reach[4] = {0, 0, 0, 0};  // left, right, up, down
+  for (int i = 0; i <= 400; ++i) {
+    const double s = i / 400.0;
+    for (glm::dvec2 t : {glm::dvec2(-f.left, -f.down + s * (f.up + f.down)),
+                         glm::dvec2(f.right, -f.down + s * (f.up + f.down)),
+                         glm::dvec2(-f.left + s * (f.left + f.right), f.up),
+                         glm::dvec2(-f.left + s * (f.left + f.right), -f.down)}) {
+      const glm::dvec3 d = glm::normalize(glm::dvec3(t, -1.0));
+      for (int k = 0; k < 64; ++k) {  // every way of turning 'a' away from d
+        const glm::dvec3 side = glm::normalize(glm::cross(d, glm::dvec3(1, 2, 3)));
+        const glm::dvec3 axis = glm::angleAxis(k * 2 * glm::pi<double>() / 64, d) * side;
+        const glm::dvec3 e = glm::angleAxis(a, axis) * d;
+        const glm::dvec2 te = glm::dvec2(e) / -e.z;
+        reach[0] = std::max(reach[0], -te.x), reach[1] = std::max(reach[1], te.x);
+        reach[2] = std::max(reach[2], te.y), reach[3] = std::max(reach[3], -te.y);
+      }
+    }
+  }
+  const double edge[4] = {w.left, w.right, w.up, w.down};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_LE(reach[i], edge[i] * (1 + 1e-5)) << i;
+    EXPECT_GT(reach[i], edge[i] * (1 - 2e-3)) << i;  // 64 turn directions: ~1e-3 short
+  }
+  // The corners make it more than turning each edge out by the angle.
+  EXPECT_GT(w.left, std::tan(std::atan(f.left) + a));
+}
+
+TEST(StereoLayout, OverscanGrowsTheBufferAtTheFieldsPixelDensity) {
+  const StereoLayout plain = StereoLayout::dk2(960, 1080);
+  EXPECT_EQ(plain.width, 960);
+  EXPECT_EQ(plain.height, 1080);
+  EXPECT_EQ(plain.leftFov.left, FovTangents::dk2LeftEye().left);
+  const StereoLayout over = StereoLayout::dk2(960, 1080, glm::radians(2.0f));
+  // Pixels per tan-angle as the field's, to the one pixel the size is rounded up by.
+  const FovTangents f = FovTangents::dk2LeftEye(), w = over.leftFov;
+  EXPECT_NEAR(over.width / (w.left + w.right), 960 / (f.left + f.right), 1.0 / (w.left + w.right));
+  EXPECT_NEAR(over.height / (w.up + w.down), 1080 / (f.up + f.down), 1.0 / (w.up + w.down));
+  EXPECT_GT(over.width, 1000);                    // 2 deg at tan ~1.1 adds ~36 pixels a side
+  EXPECT_EQ(over.fov(Eye::Right).left, w.right);  // the right eye mirrors the left
 }
 
 TEST(Halton, FirstPointsOfBases2And3) {

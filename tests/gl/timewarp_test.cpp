@@ -223,5 +223,65 @@ TEST(Timewarp, PanelAtANewPoseShowsTheSceneThere) {
   EXPECT_GT(disoccluded, 0);
 }
 
+std::array<EyeCamera, 2> layoutEyes(const Pose& pose, const StereoLayout& l) {
+  std::array<EyeCamera, 2> cams;
+  for (int e = 0; e < 2; ++e) {
+    cams[e] = camera(pose);
+    cams[e].fov = l.fov(Eye(e));
+    cams[e].width = l.width, cams[e].height = l.height;
+  }
+  return cams;
+}
+
+// What the panel at a turned head shows from a frame rendered in 'l' before the turn.
+struct TurnedPanel {
+  std::vector<glm::u8vec4> panel;
+  int uncovered = 0, filled = 0;
+};
+
+TurnedPanel panelAfterTurn(const gl::LensParams& lens, const StereoLayout& l, const Pose& b) {
+  const auto from = layoutEyes(Pose{}, l), to = layoutEyes(b, l);
+  const EyeArrays atA({render(from[0]), render(from[1])}, l.width, l.height);
+  gl::Timewarp t(lens, l.width, l.height, {l.fov(Eye::Left), l.fov(Eye::Right)});
+  t.setShownField({l.field(Eye::Left), l.field(Eye::Right)});
+  gl::PanelOutput out(lens.hResolution, lens.vResolution, 90);
+  t.runPanel(atA.color(), atA.depth(), from, to, 1.0f, out);
+  TurnedPanel r{out.read()};
+  for (int e = 0; e < 2; ++e) r.uncovered += t.stats(e).uncovered, r.filled += t.stats(e).filled;
+  return r;
+}
+
+TEST(Timewarp, OverscanLeavesNothingUncoveredForATurnWithinIt) {
+  osmesaContext();
+  const gl::LensParams lens = smallPanel();
+  const int w = 48, h = 54;
+  Pose b;  // 2.5 deg about a diagonal axis: the corners' case (core/camera.h widened)
+  b.orientation = glm::angleAxis(glm::radians(2.5f), glm::normalize(glm::vec3(1, 1, 0)));
+  const StereoLayout plain = StereoLayout::dk2(w, h);
+  const StereoLayout over = StereoLayout::dk2(w, h, glm::radians(3.0f));
+  const TurnedPanel without = panelAfterTurn(lens, plain, b);
+  const TurnedPanel with = panelAfterTurn(lens, over, b);
+  // The truth: the plain layout rendered at B (the panel shows the field whatever the margin).
+  const auto atBCams = dk2Eyes(b, w, h);
+  const EyeArrays atB({render(atBCams[0]), render(atBCams[1])}, w, h);
+  const auto truth = referencePanel(lens, atB, w, h, 1.0f, 90);
+  const PanelDifference dWithout = panelDifference(without.panel, truth);
+  const PanelDifference dWith = panelDifference(with.panel, truth);
+  std::printf(
+      "2.5 deg turn: uncovered %d without overscan, %d with 3 deg; black in one %d / %d; "
+      "mean %.3f / %.3f levels\n",
+      without.uncovered, with.uncovered, dWithout.blackInOne, dWith.blackInOne, dWithout.meanLevels,
+      dWith.meanLevels);
+  EXPECT_GT(without.uncovered, 0);  // the strip the turn brings in
+  EXPECT_GT(dWithout.blackInOne, 0);
+  // A pure rotation disoccludes nothing; within the margin every direction is rendered.
+  EXPECT_EQ(with.uncovered, 0);
+  EXPECT_EQ(with.filled, 0);
+  EXPECT_EQ(dWith.blackInOne, 0);
+  // Where both show the scene, overscan resamples as finely as the plain layout (the same
+  // pixels per tan-angle): the bound of PanelAtANewPoseShowsTheSceneThere.
+  EXPECT_LT(dWith.meanLevels, 1.5);
+}
+
 }  // namespace
 }  // namespace photovr

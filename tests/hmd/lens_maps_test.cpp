@@ -1,6 +1,11 @@
 // Hidden-area mask, distortion-pass footprint, lens density and spp maps.
 #include "hmd/lens_maps.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 namespace photovr::hmd {
@@ -57,6 +62,125 @@ TEST(HiddenArea, NeverHidesATexelTheDistortionPassReads) {
   // The mask is tight: visible-but-unread texels are only its one-pixel rim (dilation),
   // a thin ring well under the hidden area itself.
   EXPECT_LT(unreadVisible, hiddenCount / 5);
+}
+
+// Eye-buffer texels the lens shows, over a grid of display pixels and all channels, after
+// the head turned by R (pure rotation: no parallax): the direction shown at the new pose,
+// R d, found in the buffer rendered at the old one. Counts taps outside the buffer and
+// taps on hidden texels. Only display pixels whose direction lies in the lens's field
+// (the DK2's FOV tangents) count: the pincushion lens also shows a sliver beyond the
+// field's straight edges, which no buffer of that FOV holds even with the head still.
+struct TurnFootprint {
+  int outside = 0, hidden = 0, taps = 0;
+};
+
+TurnFootprint footprintAfterTurn(const LensModel& m, const EyeBufferSpec& s,
+                                 const std::vector<uint8_t>& hidden, const glm::dquat& turn) {
+  TurnFootprint f;
+  const int dw = m.panel.eyeWidth(), dh = m.panel.eyeHeight();
+  const FovTangents field =
+      s.eye == Eye::Left ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
+  for (int py = 0; py < dh; py += 6)
+    for (int px = 0; px < dw; px += 6) {
+      const glm::dvec2 screen((px + 0.5) * 2.0 / dw - 1.0, (py + 0.5) * 2.0 / dh - 1.0);
+      if (!lensSees(m, s.eye, screen)) continue;
+      for (Channel c : {Channel::Red, Channel::Green, Channel::Blue}) {
+        const glm::dvec2 t = screenToTan(m, s.eye, screen, c);
+        if (t.x < -field.left || t.x > field.right || t.y < -field.down || t.y > field.up) continue;
+        const glm::dvec3 d = turn * glm::dvec3(t, -1.0);
+        const glm::dvec2 p = tanToEyeBuffer(s.fov, s.width, s.height, glm::dvec2(d) / -d.z) - 0.5;
+        const int x0 = int(std::floor(p.x)), y0 = int(std::floor(p.y));
+        for (auto [x, y] : {std::pair{x0, y0}, {x0 + 1, y0}, {x0, y0 + 1}, {x0 + 1, y0 + 1}}) {
+          ++f.taps;
+          if (x < 0 || y < 0 || x >= s.width || y >= s.height)
+            ++f.outside;
+          else
+            f.hidden += hidden[at(s, x, y)];
+        }
+      }
+    }
+  return f;
+}
+
+// Turns of exactly 'deg': about each axis both ways, and diagonals.
+std::vector<glm::dquat> turnsOf(double deg) {
+  std::vector<glm::dquat> turns;
+  const double a = glm::radians(deg);
+  for (glm::dvec3 axis : {glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1),
+                          glm::dvec3(1, 1, 0), glm::dvec3(1, -1, 0), glm::dvec3(1, 1, 1)})
+    for (double sign : {1.0, -1.0}) turns.push_back(glm::angleAxis(sign * a, glm::normalize(axis)));
+  return turns;
+}
+
+EyeBufferSpec overscanSpec(Eye eye, double deg) {
+  const StereoLayout l = StereoLayout::dk2(296, 365, float(glm::radians(deg)));
+  return {eye, l.fov(eye), l.width, l.height, l.overscan};
+}
+
+TEST(Overscan, EveryTexelATurnWithinTheMarginShowsIsRenderedAndNotHidden) {
+  const LensModel m;
+  for (Eye eye : {Eye::Left, Eye::Right}) {
+    const EyeBufferSpec s = overscanSpec(eye, 3.0);
+    const auto hidden = hiddenAreaMask(m, s);
+    // Up to just under the margin: a turn of exactly 3 deg puts the field's edge on the
+    // buffer's edge, half a texel beyond its last texel centre, where bilinear taps fall out.
+    for (double deg : {1.0, 2.95}) {
+      const std::vector<glm::dquat> turns = turnsOf(deg);
+      for (size_t i = 0; i < turns.size(); ++i) {
+        const TurnFootprint f = footprintAfterTurn(m, s, hidden, turns[i]);
+        EXPECT_GT(f.taps, 10000);
+        EXPECT_EQ(f.outside, 0) << deg << " deg, turn " << i;
+        EXPECT_EQ(f.hidden, 0) << deg << " deg, turn " << i;
+      }
+    }
+  }
+}
+
+TEST(Overscan, WithoutItATurnLooksPastTheBufferAndIntoTheHiddenArea) {
+  const LensModel m;
+  const EyeBufferSpec s = smallSpec();
+  const auto hidden = hiddenAreaMask(m, s);
+  // The property above is not vacuous: the plain buffer fails it for a 3 deg yaw.
+  const TurnFootprint f =
+      footprintAfterTurn(m, s, hidden, glm::angleAxis(glm::radians(3.0), glm::dvec3(0, 1, 0)));
+  EXPECT_GT(f.outside, 0);
+  EXPECT_GT(f.hidden, 0);
+}
+
+TEST(Overscan, TracesOnlyARingAroundTheLensField) {
+  const LensModel m;
+  const EyeBufferSpec plain = smallSpec(), over = overscanSpec(Eye::Left, 3.0);
+  const auto count = [](const std::vector<uint8_t>& hidden) {
+    return double(std::count(hidden.begin(), hidden.end(), uint8_t(0)));
+  };
+  const double plainSeen = count(hiddenAreaMask(m, plain));
+  const double overSeen = count(hiddenAreaMask(m, over));
+  const auto hidden = hiddenAreaMask(m, over);
+  // The overscanned buffer's far corners stay hidden: no turn within 3 deg reaches them.
+  EXPECT_EQ(hidden[at(over, 0, 0)], 1);
+  EXPECT_EQ(hidden[at(over, over.width - 1, over.height - 1)], 1);
+  // More is traced, but less than the buffer grew by: 3 deg adds ~8 % a side, so ~35 %
+  // to the buffer (1.16^2); the ring traced is what a turn can bring in.
+  const double grown = double(over.width) * over.height / (double(plain.width) * plain.height);
+  EXPECT_GT(overSeen, plainSeen);
+  EXPECT_LT(overSeen / plainSeen, grown);
+}
+
+TEST(LensDensity, OverscanPixelsGetTheLowestDensityTheLensShows) {
+  const LensModel m;
+  const EyeBufferSpec s = overscanSpec(Eye::Left, 2.0);
+  const auto density = lensDensity(m, s);
+  const auto hidden = hiddenAreaMask(m, s);
+  float lowest = std::numeric_limits<float>::max(), highest = 0.0f;
+  for (size_t i = 0; i < density.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(density[i]));
+    EXPECT_EQ(density[i] > 0.0f, hidden[i] == 0) << i;
+    if (density[i] > 0.0f) lowest = std::min(lowest, density[i]);
+    highest = std::max(highest, density[i]);
+  }
+  // The margin row beside the field, at the buffer's vertical middle, is at the minimum.
+  EXPECT_EQ(density[at(s, 2, s.height / 2)], lowest);
+  EXPECT_GT(highest, 2.0f * lowest);
 }
 
 TEST(LensDensity, HighestAtTheLensCentreAndFallingOutward) {
