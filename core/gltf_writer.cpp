@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -352,13 +354,46 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// tinygltf always writes a perspective camera's zfar, as 0 for an infinite one, which glTF
+// 2.0 forbids (§5.13: zfar > 0 when present; left out = infinite). It is dropped from the
+// JSON. tinygltf sorts members, so the one after zfar (znear, always written) follows it.
+std::string withoutInfiniteZfar(const std::string& json) {
+  static const std::regex zero(R"("zfar"\s*:\s*0(\.0+)?\s*,\s*)");
+  return std::regex_replace(json, zero, "");
+}
+
+uint32_t readLe32(const std::string& s, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | uint8_t(s[at + size_t(i)]);
+  return v;
+}
+
+void writeLe32(std::string& s, size_t at, uint32_t v) {
+  for (int i = 0; i < 4; ++i) s[at + size_t(i)] = char((v >> (8 * i)) & 0xff);
+}
+
+// The same in a GLB (§4.4): its first chunk is the JSON, padded with spaces to 4 bytes;
+// the container's and the chunk's lengths follow the new JSON.
+std::string glbWithoutInfiniteZfar(const std::string& glb, const Writer& w) {
+  if (glb.size() < 20 || readLe32(glb, 16) != 0x4E4F534Au) w.fail("malformed GLB from tinygltf");
+  const size_t jsonLength = readLe32(glb, 12);
+  if (20 + jsonLength > glb.size()) w.fail("malformed GLB from tinygltf");
+  std::string json = withoutInfiniteZfar(glb.substr(20, jsonLength));
+  while (json.size() % 4) json += ' ';
+  std::string out = glb.substr(0, 20) + json + glb.substr(20 + jsonLength);
+  writeLe32(out, 8, uint32_t(out.size()));
+  writeLe32(out, 12, uint32_t(json.size()));
+  return out;
+}
+
 // Serialised in memory, then written complete or not at all (core/files.h).
 void writeAtomically(const Writer& w, bool binary) {
   std::ostringstream bytes;
   tg::TinyGLTF gltf;
   if (!gltf.WriteGltfSceneToStream(&w.model, bytes, /*prettyPrint=*/!binary, binary))
     w.fail("cannot serialise the scene");
-  writeFileAtomically(w.path, bytes.str());
+  writeFileAtomically(
+      w.path, binary ? glbWithoutInfiniteZfar(bytes.str(), w) : withoutInfiniteZfar(bytes.str()));
 }
 
 }  // namespace

@@ -1,15 +1,16 @@
 #include "core/gltf_writer.h"
 
-#include <gtest/gtest.h>
-
-#include "tests/core/test_dir.h"
-
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/gltf_loader.h"
+#include "tests/core/test_dir.h"
 
 namespace photovr {
 namespace {
@@ -247,6 +248,38 @@ TEST(GltfWriter, GlbRoundTripPreservesTheScene) {
 
 TEST(GltfWriter, GltfRoundTripPreservesTheScene) {
   expectRoundTrip("scene.gltf");
+}
+
+// An infinite camera (zfar 0) is written without zfar, as glTF 2.0 requires (§5.13: zfar > 0
+// when present), in both containers; a finite one keeps it, and both read back as written.
+TEST(GltfWriter, InfiniteCameraHasNoZfar) {
+  Scene in = testScene();
+  Camera finite = in.cameras[0];
+  in.cameras[0].zfar = 0.0f;
+  in.cameras[0].name = "infinite";
+  in.cameras.push_back(finite);
+  for (const char* file : {"infinite.gltf", "infinite.glb"}) {
+    const std::string path = (testDir() / file).string();
+    writeGlb(in, path);
+    std::ifstream f(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), {});
+    size_t zfars = 0;
+    for (size_t at = bytes.find("\"zfar\""); at != std::string::npos;
+         at = bytes.find("\"zfar\"", at + 1))
+      ++zfars;
+    EXPECT_EQ(zfars, 1u) << file;  // the finite camera's alone
+    const Scene out = loadGltf(path);
+    ASSERT_EQ(out.cameras.size(), 2u) << file;
+    expectSameCamera(in.cameras[0], out.cameras[0]);
+    expectSameCamera(in.cameras[1], out.cameras[1]);
+    if (std::string(file).ends_with(".glb")) {  // §4.4: lengths agree, JSON padded to 4
+      uint32_t total = 0, json = 0;
+      std::memcpy(&total, bytes.data() + 8, 4);
+      std::memcpy(&json, bytes.data() + 12, 4);
+      EXPECT_EQ(total, bytes.size());
+      EXPECT_EQ(json % 4, 0u);
+    }
+  }
 }
 
 TEST(GltfWriter, BlendMaterialRoundTripsWithALoadWarning) {
