@@ -2,16 +2,17 @@
 
 #include <tiny_gltf.h>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -464,56 +465,42 @@ std::vector<uint8_t> encodedImage(const Loader& ld, const tg::Image& image, std:
   return image.image;
 }
 
-// Expands 1-4 channels to RGBA: gray replicated, alpha 255 when absent.
-void expandToRgba(const std::vector<uint8_t>& raw, int channels, std::vector<uint8_t>& rgba) {
-  const size_t pixels = raw.size() / size_t(channels);
-  rgba.resize(pixels * 4);
-  for (size_t i = 0; i < pixels; ++i) {
-    const uint8_t* s = &raw[i * size_t(channels)];
-    uint8_t* d = &rgba[i * 4];
-    const bool color = channels >= 3;
-    d[0] = s[0];
-    d[1] = color ? s[1] : s[0];
-    d[2] = color ? s[2] : s[0];
-    d[3] = channels == 4 ? s[3] : (channels == 2 ? s[1] : 255);
-  }
-}
-
-// Not image_io's decodeImageRGBA8: that lets OpenImageIO premultiply colour by alpha on
-// read, while glTF colours are straight alpha (glTF 2.0 §3.9.2), so a half-transparent
-// texel would come back darkened. Throws InputError with the bare problem.
+// PNG and JPEG textures are decoded with stb_image, not OpenImageIO: OpenImageIO's PNG
+// reader leaves libpng's default error handler in place, which prints its own "libpng
+// error: ..." line on stderr before ours, and it premultiplies colour by alpha on read,
+// while glTF colours are straight alpha (glTF 2.0 §3.9.2). stb_image returns straight
+// RGBA8 (gray replicated, alpha 255 when absent), row 0 at the top, and only a reason.
+// Throws InputError with the bare problem.
 void decodeStraightRgba8(const std::vector<uint8_t>& bytes, Texture& texture) {
   // glTF 2.0's core image formats (§3.9.2), told apart by their magic bytes.
   const bool png = bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
   const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
   if (!png && !jpeg) throw InputError("", "not a PNG or JPEG image (the formats glTF 2.0 allows)");
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  void* proxy = &reader;
-  OIIO::ImageSpec config;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  // The name only picks the decoder; OpenImageIO quotes it in its messages, which
-  // withoutName removes (it is no file of the user's).
-  const std::string name = png ? "image.png" : "image.jpg";
-  const auto withoutName = [&](std::string message) {
-    for (const std::string& quoted : {" (\"" + name + "\")", "\"" + name + "\" "})
-      for (size_t at; (at = message.find(quoted)) != std::string::npos;)
-        message.erase(at, quoted.size());
-    return message;
+  if (bytes.size() > size_t(std::numeric_limits<int>::max()))
+    throw InputError("", "image larger than 2 GiB");
+  const char* format = png ? "PNG" : "JPEG";
+  const auto load = [&](int& w, int& h) {
+    int channels = 0;
+    return std::unique_ptr<stbi_uc, void (*)(void*)>(
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4),
+        stbi_image_free);
   };
-  auto in = OIIO::ImageInput::open(name, &config);
-  if (!in) throw InputError("", "cannot decode image: " + withoutName(firstLine(OIIO::geterror())));
-  const OIIO::ImageSpec& spec = in->spec();
-  const int c = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || c <= 0 || c > 4 ||
-      int64_t(spec.width) * spec.height > (int64_t(1) << 28))
-    throw InputError("", "implausible image size or channel count");
-  std::vector<uint8_t> raw(size_t(spec.width) * size_t(spec.height) * size_t(c));
-  if (!in->read_image(0, 0, 0, c, OIIO::TypeDesc::UINT8, raw.data()))
-    throw InputError("", "corrupt or truncated image: " + withoutName(firstLine(in->geterror())));
-  texture.width = spec.width;
-  texture.height = spec.height;
-  expandToRgba(raw, c, texture.rgba);
+  int w = 0, h = 0, channels = 0;
+  // The header first, so that a size claimed to exhaust memory is refused unallocated. Its
+  // failure reason is the last format stb tried; the full decode gives the format's own.
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels)) {
+    load(w, h);
+    throw InputError("", std::string("corrupt ") + format + " image: " + stbi_failure_reason());
+  }
+  if (w <= 0 || h <= 0 || int64_t(w) * h > (int64_t(1) << 28))
+    throw InputError("", "implausible image size " + std::to_string(w) + "x" + std::to_string(h));
+  const auto pixels = load(w, h);
+  if (!pixels)
+    throw InputError("", std::string("corrupt or truncated ") + format +
+                             " image: " + stbi_failure_reason());
+  texture.width = w;
+  texture.height = h;
+  texture.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
 }
 
 Texture::Wrap wrapMode(int samplerWrap) {
