@@ -130,18 +130,6 @@ Image8 readImageRGBA8(const std::string& path) {
   return toRGBA8(std::move(in), path);
 }
 
-Image8 decodeImageRGBA8(const std::vector<uint8_t>& bytes, const std::string& name) {
-  if (bytes.empty()) throw InputError(name, "empty image data");
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  OIIO::ImageSpec config = straightAlphaConfig();
-  void* proxy = &reader;
-  config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
-  // The format is sniffed from the magic bytes; the name only needs a plausible extension.
-  auto in = ImageInput::open(bytes.size() > 3 && bytes[1] == 'P' ? "mem.png" : "mem.jpg", &config);
-  if (!in) throw InputError(name, "cannot decode image: " + firstLine(OIIO::geterror()));
-  return toRGBA8(std::move(in), name);
-}
-
 float linearToSrgb(float x) {
   if (!(x > 0.0f)) return 0.0f;
   return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;

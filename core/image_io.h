@@ -39,8 +39,6 @@ void writeImage(const std::string& path, const Image8& image);
 ImageF readImageF(const std::string& path);
 // Reads an 8-bit image, expanded to RGBA.
 Image8 readImageRGBA8(const std::string& path);
-// Decodes an in-memory file (PNG, JPEG, ...) to RGBA8; 'name' is used in errors.
-Image8 decodeImageRGBA8(const std::vector<uint8_t>& bytes, const std::string& name);
 
 // sRGB transfer function (IEC 61966-2-1).
 float linearToSrgb(float linear);
