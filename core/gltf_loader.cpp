@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -811,7 +812,9 @@ glm::mat4 trsMatrix(const Loader& ld, const tg::Node& n, const std::string& wher
     // glTF stores quaternions as (x, y, z, w); glm's constructor takes w first.
     const glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
                       float(n.rotation[2]));
-    if (glm::length(q) > 0.0f) m = m * glm::mat4_cast(glm::normalize(q));
+    // A unit quaternion (§5.25); slightly off ones, as exporters write, are normalised.
+    if (!(glm::length(q) > 1e-6f)) ld.fail(where + ": rotation is not a unit quaternion");
+    m = m * glm::mat4_cast(glm::normalize(q));
   }
   if (!n.scale.empty()) m = glm::scale(m, vec3Or(n.scale, glm::vec3(1.0f)));
   return m;
@@ -829,6 +832,22 @@ glm::mat4 localTransform(const Loader& ld, const tg::Node& n, const std::string&
   return m;
 }
 
+// KHR_lights_punctual's ranges: colour and intensity >= 0, range > 0 when given, and
+// 0 <= inner < outer <= pi/2 for spots. Above 1e20 (cd or lux; sunlight is ~1e5 lux) the
+// tracer's products of intensity, BSDF (up to ~1e6 at the smallest roughness) and inverse
+// squared distance leave float range: NaN samples, not light.
+void checkLight(const Loader& ld, const Light& l, bool spot) {
+  const std::string what = "light " + named(l.name) + ": ";
+  const float brightest = std::max({l.color.r, l.color.g, l.color.b}) * l.intensity;
+  const bool colorOk = l.color.r >= 0.0f && l.color.g >= 0.0f && l.color.b >= 0.0f;
+  if (!colorOk || !(l.intensity >= 0.0f) || !(brightest <= 1e20f))
+    ld.fail(what + "colour and intensity must be >= 0 with colour x intensity at most 1e20");
+  if (!(l.range >= 0.0f) || !std::isfinite(l.range)) ld.fail(what + "range must be > 0 when given");
+  if (spot && !(l.innerConeAngle >= 0.0f && l.innerConeAngle < l.outerConeAngle &&
+                l.outerConeAngle <= glm::half_pi<float>() + 1e-6f))
+    ld.fail(what + "spot cone angles must be 0 <= inner < outer <= pi/2");
+}
+
 Light convertLight(Loader& ld, const tg::Light& gl, const std::string& name) {
   Light light;
   light.name = name;
@@ -841,6 +860,7 @@ Light convertLight(Loader& ld, const tg::Light& gl, const std::string& name) {
   light.range = float(gl.range);
   light.innerConeAngle = float(gl.spot.innerConeAngle);
   light.outerConeAngle = float(gl.spot.outerConeAngle);
+  checkLight(ld, light, gl.type == "spot");
   return light;
 }
 
@@ -874,11 +894,17 @@ void addCamera(Loader& ld, const tg::Node& node, const glm::mat4& world, const s
   const tg::Camera& gc = ld.model.cameras[size_t(node.camera)];
   Camera camera;
   camera.name = gc.name.empty() ? "camera#" + std::to_string(node.camera) : gc.name;
-  if (gc.type != "perspective" || !(gc.perspective.yfov > 0.0)) {
-    ld.warn("camera " + named(camera.name) +
-            ": only perspective cameras with yfov > 0 are supported; skipped");
+  if (gc.type != "perspective") {
+    ld.warn("camera " + named(camera.name) + ": only perspective cameras are supported; skipped");
     return;
   }
+  // glTF 2.0 §5.13: 0 < yfov (< pi for a picture), znear > 0, zfar > znear when given.
+  const tg::PerspectiveCamera& p = gc.perspective;
+  if (!(p.yfov > 0.0 && p.yfov < glm::pi<double>()) || !(p.znear > 0.0) ||
+      !std::isfinite(p.znear) || !(p.aspectRatio >= 0.0) || !std::isfinite(p.zfar) ||
+      (p.zfar != 0.0 && !(p.zfar > p.znear)))
+    ld.fail("camera " + named(camera.name) +
+            ": needs 0 < yfov < pi, znear > 0 and zfar > znear (or none)");
   camera.yfov = float(gc.perspective.yfov);
   camera.aspect = float(gc.perspective.aspectRatio);
   camera.znear = float(gc.perspective.znear);

@@ -534,6 +534,52 @@ TEST(GltfLoaderErrors, BadReferences) {
   EXPECT_NE(loadError(writeGltf("acc.gltf", accessor)).find("out of"), std::string::npos);
 }
 
+// Values outside glTF 2.0's ranges are errors naming the object: a spot whose inner cone
+// exceeds its outer, negative or float-overflowing light, a camera with znear <= 0 or zfar
+// <= znear, a zero rotation quaternion.
+TEST(GltfLoaderErrors, ValuesOutsideTheSpecsRanges) {
+  const auto withNode = [](const std::string& node, const std::string& top) {
+    return replaced(triangleGltf(), R"("scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0,"name":"tri"}],)",
+                    R"("scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0,"name":"tri"},)" + node +
+                        "]," + (top.empty() ? "" : top + ","));
+  };
+  const std::string lamp = R"({"name":"n","extensions":{"KHR_lights_punctual":{"light":0}}})";
+  const auto light = [&](const std::string& body) {
+    return withNode(lamp, R"("extensions":{"KHR_lights_punctual":{"lights":[{"name":"l",)" +
+                              body + "}]}}");
+  };
+  const auto camera = [&](const std::string& perspective) {
+    return withNode(R"({"name":"n","camera":0})",
+                    R"("cameras":[{"name":"c","type":"perspective","perspective":{)" +
+                        perspective + "}}]");
+  };
+  const struct {
+    std::string json, message;
+  } cases[] = {
+      {light(R"("type":"spot","spot":{"innerConeAngle":0.6,"outerConeAngle":0.5})"),
+       "light 'l': spot cone angles must be 0 <= inner < outer <= pi/2"},
+      {light(R"("type":"spot","spot":{"outerConeAngle":2.0})"), "spot cone angles"},
+      {light(R"("type":"point","intensity":-1)"), "light 'l': colour and intensity must be >= 0"},
+      {light(R"("type":"point","intensity":3e38)"), "at most 1e20"},
+      {light(R"("type":"point","color":[1,-1,0])"), "colour and intensity must be >= 0"},
+      {camera(R"("yfov":1,"znear":0)"), "camera 'c': needs 0 < yfov < pi, znear > 0"},
+      {camera(R"("yfov":1,"znear":-0.1)"), "znear > 0"},
+      {camera(R"("yfov":1,"znear":1,"zfar":0.5)"), "zfar > znear"},
+      {camera(R"("yfov":4,"znear":0.1)"), "0 < yfov < pi"},
+      {withNode(R"({"name":"n","mesh":0,"rotation":[0,0,0,0]})", ""),
+       "rotation is not a unit quaternion"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const std::string error = loadError(writeGltf("range" + std::to_string(i++) + ".gltf", c.json));
+    EXPECT_NE(error.find(c.message), std::string::npos) << error;
+  }
+  // Inside the ranges they load: a slightly non-unit quaternion is normalised.
+  EXPECT_NO_THROW(loadGltf(writeGltf(
+      "in_range.gltf", withNode(R"({"name":"n","mesh":0,"rotation":[0,0,0,1.001]})", ""))));
+}
+
 TEST(GltfLoaderErrors, NodeCycle) {
   const std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])",
                                     R"("nodes":[{"mesh":0,"children":[1]},{"children":[0]}])");
