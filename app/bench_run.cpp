@@ -9,7 +9,7 @@
 #include <memory>
 #include <utility>
 
-#include "app/bench_memory.h"
+#include "app/memory.h"
 #include "app/sample_maps.h"
 #include "app/trace_output.h"
 #include "core/error_metrics.h"

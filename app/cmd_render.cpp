@@ -3,10 +3,11 @@
 #include <unistd.h>
 
 #include "app/hmd_sequence.h"
-#include "core/files.h"
-#include "core/options.h"
+#include "app/memory.h"
 #include "app/render_request.h"
 #include "core/error.h"
+#include "core/files.h"
+#include "core/options.h"
 #include "core/scene_transform.h"
 
 namespace photovr::app {
@@ -71,6 +72,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.backend = o.text("--backend", "");
   r.width = o.integer("--width", kDk2EyeWidth, 1, 8192);
   r.height = o.integer("--height", kDk2EyeHeight, 1, 8192);
+  checkFrameFitsInMemory(r.width, r.height, "--width/--height");
   r.spp = o.integer("--spp", 1, 1, 65536);
   r.bounces = o.integer("--bounces", 8, 0, 64);
   r.frames = o.integer("--frames", 1, 1, 65536);

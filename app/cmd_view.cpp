@@ -16,6 +16,7 @@
 
 #include "app/commands.h"
 #include "app/headset.h"
+#include "app/memory.h"
 #include "core/files.h"
 #include "core/options.h"
 #include "app/view.h"
@@ -102,6 +103,7 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("view: unexpected argument '" + o.positional()[0] + "'");
   c.width = o.integer("--width", 320, 8, 4096);
   c.height = o.integer("--height", 360, 8, 4096);
+  checkFrameFitsInMemory(c.width, c.height, "--width/--height");
   c.eyes =
       StereoLayout::dk2(c.width, c.height, glm::radians(o.number("--overscan", 0.0f, 0.0f, 10.0f)));
   c.window = parseSize(o, "--window", c.window);

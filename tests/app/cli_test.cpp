@@ -3,8 +3,11 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
+#include "app/memory.h"
 #include "core/image_io.h"
 #include "tests/app/cli_util.h"
 
@@ -58,6 +61,26 @@ TEST(Cli, BadArgumentsAreOneLineErrorsWithExitCode2) {
     EXPECT_EQ(r.status, 2) << c[0] << "\n" << r.output;
     EXPECT_NE(r.output.find(c[1]), std::string::npos) << c[0] << "\n" << r.output;
     EXPECT_EQ(lineCount(r.output), 1u) << c[0] << "\n" << r.output;
+  }
+}
+
+// Sizes each within range but together beyond this machine's memory are refused before
+// anything is allocated (the kernel would kill the render part-way). Skipped on a machine
+// that could hold the largest frame the options allow (8192x8192 per eye, ~58 GB).
+TEST(Cli, FrameLargerThanMemoryIsAUsageError) {
+  const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (app::kBytesPerEyePixel * 8192.0 * 8192.0 <= physical)
+    GTEST_SKIP() << "this machine holds an 8192x8192 frame";
+  for (const char* command :
+       {"render --width 8192 --height 8192", "view --width 4096 --height 4096"}) {
+    if (std::string(command).starts_with("view") &&
+        app::kBytesPerEyePixel * 4096.0 * 4096.0 <= physical)
+      continue;  // 14.6 GB fits here
+    const auto r = runPhotovr(command);
+    EXPECT_EQ(r.status, 2) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("--width/--height: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("more than this machine's"), std::string::npos) << r.output;
+    EXPECT_EQ(lineCount(r.output), 1u) << r.output;
   }
 }
 

@@ -299,7 +299,8 @@ TEST(GltfLoader, CorruptEmbeddedTextureIsAnError) {
 TEST(GltfLoader, TextureClaimingAHugeSizeIsRefusedUnallocated) {
   // Signature, IHDR (13 bytes: width, height, depth 8, RGBA, no interlace) and its CRC.
   const std::string png =
-      "iVBORw0KGgoAAAANSUhEUgAATiAAAE4gCAYAAADjcEY5AAAAC0lEQVR4nGNgAAIAAAUAAXpeqz8AAAAASUVORK5CYII=";
+      "iVBORw0KGgoAAAANSUhEUgAATiAAAE4gCAYAAADjcEY5AAAAC0lEQVR4nGNgAAIAAAUAAXpeqz8AAAAASUVORK5CYII"
+      "=";
   const std::string materials =
       R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
 "textures":[{"source":0,"name":"huge"}],"images":[{"uri":"data:image/png;base64,)" +
@@ -309,8 +310,7 @@ TEST(GltfLoader, TextureClaimingAHugeSizeIsRefusedUnallocated) {
   const std::string error = loadError(writeGltf("huge_texture.gltf", json));
   // stb_image's header check refuses it (above 2^30 bytes decoded); ours (2^28 pixels)
   // stands behind it for what stb lets through.
-  EXPECT_NE(error.find("texture 'huge': corrupt PNG image: too large"), std::string::npos)
-      << error;
+  EXPECT_NE(error.find("texture 'huge': corrupt PNG image: too large"), std::string::npos) << error;
 }
 
 // tinygltf's JSON parser recurses per level: 20 000 levels crashed it. Refused up front.
@@ -546,13 +546,13 @@ TEST(GltfLoaderErrors, ValuesOutsideTheSpecsRanges) {
   };
   const std::string lamp = R"({"name":"n","extensions":{"KHR_lights_punctual":{"light":0}}})";
   const auto light = [&](const std::string& body) {
-    return withNode(lamp, R"("extensions":{"KHR_lights_punctual":{"lights":[{"name":"l",)" +
-                              body + "}]}}");
+    return withNode(
+        lamp, R"("extensions":{"KHR_lights_punctual":{"lights":[{"name":"l",)" + body + "}]}}");
   };
   const auto camera = [&](const std::string& perspective) {
-    return withNode(R"({"name":"n","camera":0})",
-                    R"("cameras":[{"name":"c","type":"perspective","perspective":{)" +
-                        perspective + "}}]");
+    return withNode(
+        R"({"name":"n","camera":0})",
+        R"("cameras":[{"name":"c","type":"perspective","perspective":{)" + perspective + "}}]");
   };
   const struct {
     std::string json, message;
