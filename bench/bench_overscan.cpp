@@ -65,8 +65,8 @@ struct Row {
 
 Pose turned(const Scene& s, const Turn& t) {
   Pose p = turnedHead(s, t.yawDeg);
-  p.orientation = glm::normalize(p.orientation *
-                                 glm::angleAxis(glm::radians(t.pitchDeg), glm::vec3(1, 0, 0)));
+  p.orientation =
+      glm::normalize(p.orientation * glm::angleAxis(glm::radians(t.pitchDeg), glm::vec3(1, 0, 0)));
   return p;
 }
 
@@ -84,8 +84,7 @@ double tracedPixels(const StereoLayout& l) {
 // The panel at each turn, rendered there with the layout 'marginDeg' gives.
 std::vector<std::vector<glm::u8vec4>> panelsAt(const Scene& scene, const gl::SceneGpu& gpu,
                                                double marginDeg, const Config& c, bool layered) {
-  const StereoLayout layout =
-      StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
+  const StereoLayout layout = StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
   gl::GBufferPass pass(layout.width, layout.height, layered, gl::EyeRouting::Layered);
   app::HeadsetCompositor comp(layout, c.panelW, c.panelH, 90);
   std::vector<std::vector<glm::u8vec4>> panels;
@@ -102,8 +101,7 @@ Row measure(const Scene& scene, const gl::SceneGpu& gpu, double marginDeg, const
             bool layered, const std::vector<std::vector<glm::u8vec4>>& truth) {
   Row row;
   row.marginDeg = marginDeg;
-  const StereoLayout layout =
-      StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
+  const StereoLayout layout = StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
   row.width = layout.width, row.height = layout.height;
   row.traced = tracedPixels(layout);
   gl::GBufferPass pass(layout.width, layout.height, layered, gl::EyeRouting::Layered);
@@ -143,9 +141,10 @@ const char* const kUsage =
     "usage: photovr_bench_overscan [--out DIR] [--scene NAME] [--width W] [--height H]\n"
     "                              [--repeats N]\n"
     "Overscan margins 0, 1, 2, 3 and 5 deg on each built-in scene (or --scene NAME), eyes\n"
-    "W x H over the lens's field (960x1080): buffer and traced pixels, the G-buffer's time (best of\n"
-    "--repeats, 3), and for head turns of 1.5 and 3 deg the panel share the re-projected\n"
-    "frame leaves black and its error. Writes bench_overscan.csv to --out (out/bench).\n";
+    "W x H over the lens's field (960x1080): buffer and traced pixels, the G-buffer's time\n"
+    "(best of --repeats, 3), and for head turns of 1.5 and 3 deg the panel share the\n"
+    "re-projected frame leaves black and its error. Writes bench_overscan.csv to --out\n"
+    "(out/bench).\n";
 
 int run(const Options& o) {
   Config c;

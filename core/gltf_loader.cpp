@@ -497,8 +497,8 @@ void decodeStraightRgba8(const std::vector<uint8_t>& bytes, Texture& texture) {
     throw InputError("", "implausible image size " + std::to_string(w) + "x" + std::to_string(h));
   const auto pixels = load(w, h);
   if (!pixels)
-    throw InputError("", std::string("corrupt or truncated ") + format +
-                             " image: " + stbi_failure_reason());
+    throw InputError(
+        "", std::string("corrupt or truncated ") + format + " image: " + stbi_failure_reason());
   texture.width = w;
   texture.height = h;
   texture.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
