@@ -50,7 +50,7 @@ const char* const kHmdRenderHelp =
     "                         over the lens's field\n"
     "  writes per frame NNNN_left.png, NNNN_right.png (undistorted, as rendered) and\n"
     "  NNNN_panel.png (re-projected, distorted), and hmd_frames.csv (times, poses,\n"
-    "  disoccluded fractions)\n";
+    "  disoccluded and uncovered fractions)\n";
 
 namespace {
 
@@ -134,7 +134,7 @@ class FrameLog {
  public:
   explicit FrameLog(const std::string& dir) : path_(dir + "/hmd_frames.csv") {
     out_ << "frame,t_render,t_display,rotation_delta_deg,move_delta_m,disoccluded_left,"
-            "disoccluded_right,render_ms,compositor_ms\n";
+            "disoccluded_right,render_ms,compositor_ms,uncovered_left,uncovered_right\n";
   }
   std::ostream& row() { return out_; }
   void close() { writeFileAtomically(path_, out_.str()); }
@@ -177,8 +177,17 @@ class HmdSequence {
                << glm::length(trackedB.position - trackedA.position) << ','
                << compositor_.timewarp().stats(0).disoccludedFraction() << ','
                << compositor_.timewarp().stats(1).disoccludedFraction() << ',' << renderMs << ','
-               << compositorMs << '\n';
+               << compositorMs << ',' << uncoveredFraction(0) << ',' << uncoveredFraction(1)
+               << '\n';
     renderer_.recycle(std::move(eyes));
+  }
+
+  // The share of an eye's lens-visible pixels the frame holds nothing for (the strip a
+  // turn brings in beyond the buffer; overscan covers it): disoccluded less the filled.
+  double uncoveredFraction(int eye) const {
+    const gl::ReprojectStats s = compositor_.timewarp().stats(eye);
+    const int n = s.reprojected + s.filled + s.uncovered;
+    return n ? double(s.uncovered) / n : 0.0;
   }
 
   void finish(const HmdSequenceOptions& o) {

@@ -84,6 +84,10 @@ TEST(HmdCli, OverscanRendersWiderEyesAndCoversTheTurn) {
   ASSERT_EQ(over.size(), 1u);
   EXPECT_NEAR(over[0][3], 2.0, 1e-3);  // rotation_delta_deg
   EXPECT_LT(over[0][5] + over[0][6], (plain[0][5] + plain[0][6]) / 3);
+  // uncovered_left and _right: nothing with overscan, the strip without.
+  ASSERT_EQ(over[0].size(), 11u);
+  EXPECT_GT(plain[0][9] + plain[0][10], 0.0);
+  EXPECT_EQ(over[0][9] + over[0][10], 0.0);
   EXPECT_EQ(readImageRGBA8(dir + "/over/0000_panel.png").width, 192);
 }
 
