@@ -11,12 +11,9 @@ std::unique_ptr<gl::Context> createRenderContext(const std::string& backend) {
   if (!backend.empty()) {
     ctx = gl::Context::create({gl::parseBackend(backend)});
   } else {
-    try {
-      ctx = gl::Context::create({gl::Backend::EGL});
-    } catch (const gl::ContextError& e) {
-      std::cerr << "photovr: " << e.what() << "; using osmesa\n";
-      ctx = gl::Context::create({gl::Backend::OSMesa});
-    }
+    std::string eglFailure;
+    ctx = gl::Context::createHeadless(&eglFailure);
+    if (!eglFailure.empty()) std::cerr << "photovr: " << eglFailure << "; using osmesa\n";
   }
   std::cerr << "photovr: " << gl::backendName(ctx->backend()) << ", OpenGL " << ctx->version()
             << ", " << ctx->renderer() << (mallocUsesHugePages() ? "; malloc on huge pages" : "")

@@ -314,12 +314,7 @@ Config parse(const Options& o) {
 
 int run(const Options& options) {
   const Config c = parse(options);
-  std::unique_ptr<gl::Context> ctx;
-  try {
-    ctx = gl::Context::create({gl::Backend::EGL});
-  } catch (const gl::ContextError&) {
-    ctx = gl::Context::create({gl::Backend::OSMesa});
-  }
+  const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
   const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::filesystem::create_directories(c.out);
   std::printf(

@@ -117,12 +117,7 @@ int run(const Options& o) {
   const std::string out = o.text("--out", "out/bench");
   const int w = o.integer("--width", 240, 1, 4096), h = o.integer("--height", 270, 1, 4096);
   const int repeats = o.integer("--repeats", 3, 1, 1000);
-  std::unique_ptr<gl::Context> ctx;
-  try {
-    ctx = gl::Context::create({gl::Backend::EGL});
-  } catch (const gl::ContextError&) {
-    ctx = gl::Context::create({gl::Backend::OSMesa});
-  }
+  const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
   std::printf("bench_hybrid: %dx%d x 2 eyes, 1 spp, 8 bounces, best of %d; GL: %s\n", w, h, repeats,
               ctx->renderer().c_str());
   std::filesystem::create_directories(out);

@@ -153,12 +153,7 @@ int run(const Options& o) {
   c.fieldW = o.integer("--width", c.fieldW, 8, 4096);
   c.fieldH = o.integer("--height", c.fieldH, 8, 4096);
   c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
-  std::unique_ptr<gl::Context> ctx;
-  try {
-    ctx = gl::Context::create({gl::Backend::EGL});
-  } catch (const gl::ContextError&) {
-    ctx = gl::Context::create({gl::Backend::OSMesa});
-  }
+  const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
   const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::filesystem::create_directories(c.out);
   std::printf("bench_overscan: field %dx%d per eye, panel %dx%d; GL: %s\n", c.fieldW, c.fieldH,

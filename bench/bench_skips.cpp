@@ -212,12 +212,7 @@ int run(const Options& options) {
   o.height = options.integer("--height", o.height, 1, 4096);
   o.frames = options.integer("--frames", o.frames, ConvergenceMonitor::kMinFrames, 100000);
   o.repeats = options.integer("--repeats", o.repeats, 1, 1000);
-  std::unique_ptr<gl::Context> ctx;
-  try {
-    ctx = gl::Context::create({gl::Backend::EGL});
-  } catch (const gl::ContextError&) {
-    ctx = gl::Context::create({gl::Backend::OSMesa});
-  }
+  const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
   const bool layers = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::printf(
       "bench_skips: hybrid, %dx%d x 2 eyes, 1 spp, %d frames, tracer-stage ms per frame "

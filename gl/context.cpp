@@ -24,6 +24,15 @@ std::string backendName(Backend backend) {
   return "?";
 }
 
+std::unique_ptr<Context> Context::createHeadless(std::string* eglFailure) {
+  try {
+    return create({Backend::EGL});
+  } catch (const ContextError& e) {
+    if (eglFailure) *eglFailure = e.what();
+    return create({Backend::OSMesa});
+  }
+}
+
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   switch (options.backend) {
     case Backend::OSMesa:

@@ -37,6 +37,9 @@ class Context {
   // Creates the context, makes it current, loads the entry points and checks for OpenGL
   // 4.5 core. Throws ContextError.
   static std::unique_ptr<Context> create(const ContextOptions& options);
+  // Headless: EGL (a GPU's, or Mesa's llvmpipe), else OSMesa. Why EGL failed goes to
+  // 'eglFailure' when OSMesa had to stand in.
+  static std::unique_ptr<Context> createHeadless(std::string* eglFailure = nullptr);
 
   virtual Backend backend() const = 0;
   // Makes this context current and points the entry points at it (contexts of different
