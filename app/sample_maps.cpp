@@ -13,12 +13,7 @@ std::array<std::vector<uint16_t>, 2> lensSampleMaps(const std::string& kind,
   if (kind == "uniform") return maps;
   const hmd::LensModel lens;  // the documented DK2 defaults (dk2.md §6)
   for (int e = 0; e < 2; ++e) {
-    hmd::EyeBufferSpec spec;
-    spec.eye = e == 0 ? Eye::Left : Eye::Right;
-    spec.fov = layout.fov(spec.eye);
-    spec.width = layout.width;
-    spec.height = layout.height;
-    spec.overscan = layout.overscan;
+    const hmd::EyeBufferSpec spec = hmd::EyeBufferSpec::of(layout, Eye(e));
     if (kind == "lens-matched") {
       maps[e] = hmd::lensMatchedSpp(lens, spec, spp);
     } else if (kind == "thesis-zones") {

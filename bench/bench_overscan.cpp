@@ -74,7 +74,7 @@ double tracedPixels(const StereoLayout& l) {
   const hmd::LensModel lens;
   double n = 0;
   for (Eye e : {Eye::Left, Eye::Right}) {
-    const hmd::EyeBufferSpec spec{e, l.fov(e), l.width, l.height, l.overscan};
+    const hmd::EyeBufferSpec spec = hmd::EyeBufferSpec::of(l, e);
     const auto hidden = hmd::hiddenAreaMask(lens, spec);
     n += double(std::count(hidden.begin(), hidden.end(), uint8_t(0)));
   }

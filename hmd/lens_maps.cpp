@@ -52,12 +52,21 @@ double displayPixelsPerTanArea(const LensModel& m, Eye eye, const glm::dvec2& sc
   return pixelsPerNdcArea / tanPerNdcArea;
 }
 
-// 1 where some channel of the lens shows the pixel's centre, with no margin.
+// With overscan, whether a tan-angle is in the field the panel shows (beyond it the panel
+// shows the field's edge).
+bool inShownField(const EyeBufferSpec& s, const glm::dvec2& t) {
+  return s.overscan <= 0.0 || (t.x >= -s.field.left && t.x <= s.field.right &&
+                               t.y >= -s.field.down && t.y <= s.field.up);
+}
+
+// 1 where some channel of the lens shows the pixel's centre at this pose, with no margin.
 std::vector<uint8_t> lensVisible(const LensModel& m, const EyeBufferSpec& s) {
   std::vector<uint8_t> visible(size_t(s.width) * s.height);
   for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x)
-      visible[size_t(y) * s.width + x] = anyChannelSeen(m, s, pixelCentreTan(s, x, y));
+    for (int x = 0; x < s.width; ++x) {
+      const glm::dvec2 t = pixelCentreTan(s, x, y);
+      visible[size_t(y) * s.width + x] = inShownField(s, t) && anyChannelSeen(m, s, t);
+    }
   return visible;
 }
 

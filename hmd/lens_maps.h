@@ -18,13 +18,18 @@ struct EyeBufferSpec {
   FovTangents fov = FovTangents::dk2LeftEye();  // the FOV the eye buffer is rendered with
   int width = kDk2EyeWidth, height = kDk2EyeHeight;
   double overscan = 0.0;  // radians by which 'fov' exceeds the lens's field (StereoLayout)
+  FovTangents field = FovTangents::dk2LeftEye();  // with overscan: the field the panel shows
+  static EyeBufferSpec of(const StereoLayout& layout, Eye eye) {
+    return {eye, layout.fov(eye), layout.width, layout.height, layout.overscan, layout.field(eye)};
+  }
 };
 
 // 1 = hidden: for every channel the pixel's centre maps to a screen point the lens does
 // not show (lensSees), and so does every pixel within 'dilate' pixels (the distortion
-// pass's bilinear taps reach one texel beyond the sample point). With overscan, a pixel
-// whose direction is within that angle of one the lens shows is visible too: what a
-// re-projection to a head turned by up to the overscan shows is traced.
+// pass's bilinear taps reach one texel beyond the sample point). With overscan the panel
+// shows the field alone (gl/timewarp.h setShownField), so what the lens shows within the
+// field counts, and every pixel whose direction is within the overscan angle of it: what a
+// re-projection to a head turned by up to that angle shows is traced.
 std::vector<uint8_t> hiddenAreaMask(const LensModel& m, const EyeBufferSpec& spec, int dilate = 1);
 
 // Reference for the distortion pass: 1 for every eye-buffer texel some display pixel of

@@ -114,7 +114,7 @@ std::vector<glm::dquat> turnsOf(double deg) {
 
 EyeBufferSpec overscanSpec(Eye eye, double deg) {
   const StereoLayout l = StereoLayout::dk2(296, 365, float(glm::radians(deg)));
-  return {eye, l.fov(eye), l.width, l.height, l.overscan};
+  return EyeBufferSpec::of(l, eye);
 }
 
 TEST(Overscan, EveryTexelATurnWithinTheMarginShowsIsRenderedAndNotHidden) {
@@ -178,8 +178,16 @@ TEST(LensDensity, OverscanPixelsGetTheLowestDensityTheLensShows) {
     if (density[i] > 0.0f) lowest = std::min(lowest, density[i]);
     highest = std::max(highest, density[i]);
   }
-  // The margin row beside the field, at the buffer's vertical middle, is at the minimum.
-  EXPECT_EQ(density[at(s, 2, s.height / 2)], lowest);
+  // A margin pixel 1 deg beyond the field's left edge, at the lens axis's height, is at the
+  // minimum; one 2.5 deg beyond is past what a 2 deg turn brings in: hidden (the buffer
+  // reaches ~2.7 deg there, for the corners' sake).
+  const auto beyondLeftEdge = [&](double deg) {
+    const glm::dvec2 t(-std::tan(std::atan(double(s.field.left)) + glm::radians(deg)), 0.0);
+    const glm::dvec2 p = tanToEyeBuffer(s.fov, s.width, s.height, t);
+    return at(s, int(p.x), int(p.y));
+  };
+  EXPECT_EQ(density[beyondLeftEdge(1.0)], lowest);
+  EXPECT_EQ(hidden[beyondLeftEdge(2.5)], 1);
   EXPECT_GT(highest, 2.0f * lowest);
 }
 
