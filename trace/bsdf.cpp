@@ -7,43 +7,8 @@
 namespace photovr {
 namespace {
 
-// The parameters in the form the lobes use, derived once per call.
-struct Lobes {
-  float alpha;
-  glm::vec3 f0;       // specular reflectance at normal incidence
-  glm::vec3 diffuse;  // (1 - metallic) baseColor, the Lambert albedo before Fresnel
-};
-
-Lobes lobes(const BsdfParams& p) {
-  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN).
-  const glm::vec3 base =
-      glm::clamp(glm::vec3(isFinite(p.baseColor) ? p.baseColor : glm::vec3(0.0f)), 0.0f, 1.0f);
-  const float metallic = isFinite(p.metallic) ? std::clamp(p.metallic, 0.0f, 1.0f) : 0.0f;
-  return {roughnessToAlpha(p.roughness), glm::mix(glm::vec3(kDielectricF0), base, metallic),
-          (1.0f - metallic) * base};
-}
-
 float sinTheta2(const glm::vec3& w) {
   return w.x * w.x + w.y * w.y;
-}
-
-glm::vec3 specular(const Lobes& l, const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h) {
-  const glm::vec3 f = fresnelSchlick(l.f0, glm::dot(wo, h));
-  return f * (ggxD(h, l.alpha) * ggxG1OverCos(wo, l.alpha) * ggxG1OverCos(wi, l.alpha) * 0.25f);
-}
-
-glm::vec3 diffuse(const Lobes& l, const glm::vec3& wo, const glm::vec3& wi) {
-  const glm::vec3 one(1.0f);
-  return (one - fresnelSchlick(l.f0, wo.z)) * (one - fresnelSchlick(l.f0, wi.z)) * l.diffuse *
-         kInvPi;
-}
-
-float specularProbability(const Lobes& l, const glm::vec3& wo) {
-  const glm::vec3 f = fresnelSchlick(l.f0, wo.z);
-  const float spec = luminance(f);
-  const float diff = luminance((glm::vec3(1.0f) - f) * l.diffuse);
-  if (diff <= 0.0f) return 1.0f;
-  return spec / (spec + diff);
 }
 
 // The half-vector of a reflection pair; false when wo and wi cancel.
@@ -55,14 +20,36 @@ bool halfVector(const glm::vec3& wo, const glm::vec3& wi, glm::vec3& h) {
   return true;
 }
 
-float pdf(const Lobes& l, const glm::vec3& wo, const glm::vec3& wi) {
-  glm::vec3 h;
-  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !halfVector(wo, wi, h)) return 0.0f;
-  const float pSpec = specularProbability(l, wo);
-  // Visible-normal density mapped through reflection, dwi = 4 (wo.h) dh (Heitz 2018,
-  // eq. 17): G1(wo) D(h) / (4 wo.z), with wo.h > 0 here since both lie above the surface.
-  const float specPdf = ggxG1OverCos(wo, l.alpha) * ggxD(h, l.alpha) * 0.25f;
+// wo and wi both above the surface, with a half-vector h: otherwise f and pdf are 0.
+bool reflectionPair(const BsdfVertex& v, const glm::vec3& wi, glm::vec3& h) {
+  return v.wo.z > 0.0f && wi.z > 0.0f && halfVector(v.wo, wi, h);
+}
+
+// The specular lobe with d = ggxD(h, alpha).
+glm::vec3 specular(const BsdfVertex& v, const glm::vec3& wi, const glm::vec3& h, float d) {
+  const glm::vec3 f = fresnelSchlick(v.f0, glm::dot(v.wo, h));
+  return f * (d * v.g1OverCosWo * ggxG1OverCos(wi, v.alpha) * 0.25f);
+}
+
+glm::vec3 diffuse(const BsdfVertex& v, const glm::vec3& wi) {
+  const glm::vec3 one(1.0f);
+  return (one - v.fresnelWo) * (one - fresnelSchlick(v.f0, wi.z)) * v.diffuse * kInvPi;
+}
+
+// The combined density of a reflection pair, with d = ggxD(h, alpha). Visible-normal
+// density mapped through reflection, dwi = 4 (wo.h) dh (Heitz 2018, eq. 17): G1(wo) D(h) /
+// (4 wo.z), with wo.h > 0 here since both lie above the surface.
+float pdf(const BsdfVertex& v, const glm::vec3& wi, float d) {
+  const float specPdf = v.g1OverCosWo * d * 0.25f;
+  const float pSpec = v.specularProbability;
   return pSpec * specPdf + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
+}
+
+float specularProbability(const glm::vec3& fresnelWo, const glm::vec3& diffuseAlbedo) {
+  const float spec = luminance(fresnelWo);
+  const float diff = luminance((glm::vec3(1.0f) - fresnelWo) * diffuseAlbedo);
+  if (diff <= 0.0f) return 1.0f;
+  return spec / (spec + diff);
 }
 
 }  // namespace
@@ -128,21 +115,16 @@ float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha) {
 }
 
 float specularProbability(const BsdfParams& p, const glm::vec3& wo) {
-  return specularProbability(lobes(p), wo);
+  return prepareBsdf(p, wo).specularProbability;
 }
 
 glm::vec3 evalBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  glm::vec3 h;
-  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !halfVector(wo, wi, h)) return glm::vec3(0.0f);
-  const Lobes l = lobes(p);
-  return specular(l, wo, wi, h) + diffuse(l, wo, wi);
+  const BsdfLobes f = evalBsdfLobes(p, wo, wi);
+  return f.specular + f.diffuse;
 }
 
 BsdfLobes evalBsdfLobes(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  glm::vec3 h;
-  if (!(wo.z > 0.0f) || !(wi.z > 0.0f) || !halfVector(wo, wi, h)) return {};
-  const Lobes l = lobes(p);
-  return {diffuse(l, wo, wi), specular(l, wo, wi, h)};
+  return evalBsdfAndPdf(prepareBsdf(p, wo), wi).f;
 }
 
 glm::vec3 diffuseAlbedo(const BsdfParams& p) {
@@ -162,26 +144,55 @@ glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  return pdf(lobes(p), wo, wi);
+  return evalBsdfAndPdf(prepareBsdf(p, wo), wi).pdf;
 }
 
 BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u, float uLobe) {
-  if (!(wo.z > 0.0f)) return {};
-  const Lobes l = lobes(p);
+  return sampleBsdf(prepareBsdf(p, wo), u, uLobe);
+}
+
+BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
+  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN).
+  const glm::vec3 base =
+      glm::clamp(glm::vec3(isFinite(p.baseColor) ? p.baseColor : glm::vec3(0.0f)), 0.0f, 1.0f);
+  const float metallic = isFinite(p.metallic) ? std::clamp(p.metallic, 0.0f, 1.0f) : 0.0f;
+  BsdfVertex v;
+  v.wo = wo;
+  v.alpha = roughnessToAlpha(p.roughness);
+  v.f0 = glm::mix(glm::vec3(kDielectricF0), base, metallic);
+  v.diffuse = (1.0f - metallic) * base;
+  v.fresnelWo = fresnelSchlick(v.f0, wo.z);
+  v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);
+  v.specularProbability = specularProbability(v.fresnelWo, v.diffuse);
+  return v;
+}
+
+BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
+  glm::vec3 h;
+  if (!reflectionPair(v, wi, h)) return {};
+  const float d = ggxD(h, v.alpha);
+  return {{diffuse(v, wi), specular(v, wi, h, d)}, pdf(v, wi, d)};
+}
+
+BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u, float uLobe) {
+  if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
-  s.specularLobe = uLobe < specularProbability(l, wo);
+  s.specularLobe = uLobe < v.specularProbability;
   if (s.specularLobe) {
-    const glm::vec3 h = sampleGgxVndf(wo, l.alpha, u);
-    s.wi = 2.0f * glm::dot(wo, h) * h - wo;
+    const glm::vec3 h = sampleGgxVndf(v.wo, v.alpha, u);
+    s.wi = 2.0f * glm::dot(v.wo, h) * h - v.wo;
   } else {
     s.wi = sampleCosineHemisphere(u);
   }
   // The pdf is recomputed from wi rather than carried from the lobe's sampler, so a
   // sample's pdf is exactly what pdfBsdf() later says about the same direction (MIS).
-  s.pdf = pdf(l, wo, s.wi);
   glm::vec3 h;
-  if (!(s.pdf > 0.0f) || !isFinite(s.pdf) || !halfVector(wo, s.wi, h)) return {};
-  s.f = specular(l, wo, s.wi, h) + diffuse(l, wo, s.wi);
+  if (!reflectionPair(v, s.wi, h)) return {};
+  const float d = ggxD(h, v.alpha);
+  s.pdf = pdf(v, s.wi, d);
+  if (!(s.pdf > 0.0f) || !isFinite(s.pdf)) return {};
+  s.fDiffuse = diffuse(v, s.wi);
+  s.f = specular(v, s.wi, h, d) + s.fDiffuse;
   s.weight = s.f * (s.wi.z / s.pdf);
   return s;
 }

@@ -26,13 +26,14 @@ struct PathVertex {
 // Next-event estimation at one vertex, MIS-weighted against BSDF sampling for lights with
 // area (Veach 1997 §9.2, power heuristic).
 BsdfLobes directLight(const TraceContext& ctx, const PathVertex& v, const Frame& frame,
-                      Sampler& sampler, uint64_t& rays) {
+                      const BsdfVertex& bsdf, Sampler& sampler, uint64_t& rays) {
   if (ctx.lights.empty()) return {};
   const float uSelect = sampler.next();
   const LightSample ls = ctx.lights.sample(v.hit.position, uSelect, sampler.next2());
   if (!ls.valid() || glm::dot(ls.direction, v.hit.geometricNormal) <= 0.0f) return {};
-  const glm::vec3 woL = frame.toLocal(v.wo), wiL = frame.toLocal(ls.direction);
-  const BsdfLobes f = evalBsdfLobes(v.hit.bsdf, woL, wiL);
+  const glm::vec3 wiL = frame.toLocal(ls.direction);
+  const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
+  const BsdfLobes& f = e.f;
   if (f.total() == glm::vec3(0.0f)) return {};
   // The shadow ray runs from the offset origin to the light point itself (not along the
   // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
@@ -48,7 +49,7 @@ BsdfLobes directLight(const TraceContext& ctx, const PathVertex& v, const Frame&
   }
   ++rays;
   if (ctx.embree.occluded(origin, shadowDir, 0.0f, tfar)) return {};
-  const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, pdfBsdf(v.hit.bsdf, woL, wiL));
+  const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
   const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
   return {f.diffuse * scale, f.specular * scale};
 }
@@ -74,11 +75,9 @@ bool finite(const glm::vec3& v) {
 // Fraction of each channel of a BSDF-sampled direction's weight that belongs to the
 // diffuse lobe: splitting by f_d / (f_d + f_s) keeps both parts unbiased (the expectation
 // of f_d / f * f cos L / pdf is the integral of f_d cos L).
-glm::vec3 diffuseShare(const BsdfParams& p, const glm::vec3& woL, const glm::vec3& wiL) {
-  const BsdfLobes f = evalBsdfLobes(p, woL, wiL);
-  const glm::vec3 total = f.total();
+glm::vec3 diffuseShare(const BsdfSample& bs) {
   glm::vec3 share(0.0f);
-  for (int k = 0; k < 3; ++k) share[k] = total[k] > 0.0f ? f.diffuse[k] / total[k] : 0.0f;
+  for (int k = 0; k < 3; ++k) share[k] = bs.f[k] > 0.0f ? bs.fDiffuse[k] / bs.f[k] : 0.0f;
   return share;
 }
 
@@ -96,40 +95,48 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
   glm::vec3 beta(1.0f), share(1.0f);  // share: diffuse fraction of the first bounce
   bool albedoSet = false;
   uint64_t rays = 0;
+  const uint32_t pathKey = Sampler::pathKey(counters);
   for (int depth = 0;; ++depth) {
-    counters.bounce = uint32_t(depth);
-    Sampler sampler = Sampler::make(counters);
+    Sampler sampler = Sampler::forBounce(pathKey, uint32_t(depth));
     if (!albedoSet && (v.hit.bsdf.roughness >= kMirrorRoughness || v.hit.bsdf.metallic < 1.0f)) {
       result.albedo = v.hit.bsdf.baseColor;
       albedoSet = true;
     }
     const Frame frame = Frame::fromZ(v.hit.shadingNormal);
-    const BsdfLobes direct = directLight(ctx, v, frame, sampler, rays);
+    const BsdfVertex bsdf = prepareBsdf(v.hit.bsdf, frame.toLocal(v.wo));
+    const BsdfLobes direct = directLight(ctx, v, frame, bsdf, sampler, rays);
     if (depth == 0) {
       result.diffuse += direct.diffuse;
       result.specular += direct.specular;
     } else {
       addSplit(result, beta * direct.total(), share);
     }
-    const glm::vec3 woL = frame.toLocal(v.wo);
-    const BsdfSample bs = sampleBsdf(v.hit.bsdf, woL, sampler.next2(), sampler.next());
+    const BsdfSample bs = sampleBsdf(bsdf, sampler.next2(), sampler.next());
     if (!bs.valid()) break;
     const glm::vec3 wi = frame.toWorld(bs.wi);
     if (glm::dot(wi, v.hit.geometricNormal) <= 0.0f) break;  // shading normal leaked below
-    if (depth == 0) share = diffuseShare(v.hit.bsdf, woL, bs.wi);
+    if (depth == 0) share = diffuseShare(bs);
     beta *= bs.weight;
+    // Whether the path ends at what this ray finds: the bounce cap, or Russian roulette
+    // (thesis Algorithm 2: survive with the largest throughput channel, then rescale).
+    // Decided before the ray is traced (the same number from this vertex's sampler as
+    // after), so that a last hit is rebuilt only as far as its emission needs.
+    bool last = depth >= ctx.settings.maxBounces;
+    float survival = 1.0f;
+    if (!last && depth + 1 >= ctx.settings.russianRouletteDepth) {
+      survival = std::min(1.0f, std::max(beta.r, std::max(beta.g, beta.b)));
+      last = !(sampler.next() < survival);
+    }
     const TraceHit th = ctx.embree.intersect(offsetRayOrigin(v.hit, wi), wi, 0.0f, kInfinity);
     ++rays;
     SurfaceHit next;
-    if (th.hit) next = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi);
-    addSplit(result, beta * foundLight(ctx, v, th, th.hit ? &next : nullptr, wi, bs.pdf), share);
-    if (!th.hit || depth >= ctx.settings.maxBounces) break;
-    if (depth + 1 >= ctx.settings.russianRouletteDepth) {
-      // Thesis Algorithm 2: survive with the largest throughput channel, then rescale.
-      const float p = std::min(1.0f, std::max(beta.r, std::max(beta.g, beta.b)));
-      if (!(sampler.next() < p)) break;
-      beta /= p;
+    if (th.hit) {
+      next = last ? surfaceEmissionAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi)
+                  : surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi);
     }
+    addSplit(result, beta * foundLight(ctx, v, th, th.hit ? &next : nullptr, wi, bs.pdf), share);
+    if (!th.hit || last) break;
+    beta /= survival;
     v = {next, -wi};
   }
   if (!albedoSet) result.albedo = v.hit.bsdf.baseColor;

@@ -69,6 +69,30 @@ float powerHeuristic(int nf, float fPdf, int ng, float gPdf) {
 
 // ---------------------------------------------------------------------------------------
 
+namespace {
+
+// The guide table's resolution: the largest power of two <= n, up to this many cells
+// (1 KiB per row of an environment map; a 2048-wide row then searches 8 cells).
+constexpr int kMaxGuideCells = 256;
+
+// The last index in [first, first + len) whose cdf value is <= u, given that the first one
+// is (or the first when none is): a binary search without branches. u is random, so a
+// compare-and-jump search mispredicts about every other step; each step here keeps the
+// half whose first element is still <= u (a conditional move). The predicate !(u < cdf)
+// holds on a prefix of the sorted cdf, so the answer is std::upper_bound's minus one.
+int lastAtMost(const float* cdf, int first, int len, float u) {
+  const float* p = cdf + first;
+  size_t n = size_t(len);
+  while (n > 1) {
+    const size_t half = n / 2;
+    p = u < p[half] ? p : p + half;
+    n -= half;
+  }
+  return int(p - cdf);
+}
+
+}  // namespace
+
 Distribution1D::Distribution1D(std::span<const float> f) : func_(f.size()), cdf_(f.size() + 1) {
   assert(!f.empty());
   const size_t n = f.size();
@@ -91,13 +115,27 @@ Distribution1D::Distribution1D(std::span<const float> f) : func_(f.size()), cdf_
   }
   cdf_[n] = 1.0f;
   integral_ = float(sum / double(n));
+  int g = 1;
+  while (2 * g <= int(n) && 2 * g <= kMaxGuideCells) g *= 2;
+  guide_.resize(size_t(g) + 1);
+  for (int j = 0; j <= g; ++j) {
+    const float u = float(j) / float(g);
+    guide_[j] = j == g ? int(n) - 1 : lastAtMost(cdf_.data(), 0, int(n) + 1, u);
+  }
 }
 
 int Distribution1D::findCell(float u) const {
-  // The last cell whose cdf start is <= u; cells of zero width are skipped because
-  // upper_bound passes over runs of equal cdf values.
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  const int i = int(it - cdf_.begin()) - 1;
+  // The last cell whose cdf start is <= u; cells of zero width are skipped because the
+  // search passes over runs of equal cdf values. For u in [0, 1) (every sampler's), cdf_[0]
+  // = 0 <= u < cdf_[n] = 1, and the guide bounds the search exactly (it is monotone in u).
+  const int g = int(guide_.size()) - 1;
+  if (u >= 0.0f && u < 1.0f) {
+    const int j = int(u * float(g));  // exact: g is a power of two
+    return lastAtMost(cdf_.data(), guide_[j], guide_[j + 1] - guide_[j] + 1, u);
+  }
+  // NaN or outside [0, 1): std::upper_bound's answer, clamped to the cells.
+  const int last = lastAtMost(cdf_.data(), 0, int(cdf_.size()), u);
+  const int i = last + (u < cdf_[last] ? 0 : 1) - 1;
   return std::clamp(i, 0, size() - 1);
 }
 

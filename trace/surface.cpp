@@ -86,13 +86,16 @@ BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolate
   return p;
 }
 
-}  // namespace
-
-SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
-                     const glm::vec3& incoming) {
+// What every hit gets: position and its error bound, the geometric normal facing the ray
+// and the side it hit. 'ng' receives the normal before that flip (the counter-clockwise
+// side's), from which the rest is built. Inlined: as a call of its own, surfaceAt's loads
+// of normals, uvs and textures waited for it to return instead of overlapping its loads of
+// the vertices (the hybrid's trace stage ran 2-5 % slower).
+[[gnu::always_inline]] inline SurfaceHit hitGeometry(const Scene& scene, uint32_t instance,
+                                                     uint32_t triangle, float b1, float b2,
+                                                     const glm::vec3& incoming, glm::vec3& ng) {
   const Instance& inst = scene.instances[instance];
   const Mesh& mesh = scene.meshes[inst.mesh];
-  const Material& mat = scene.materials[mesh.material];
   const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
   const glm::mat4& m = inst.transform;
   const glm::vec3 p0 = glm::vec3(m * glm::vec4(mesh.positions[idx[0]], 1.0f));
@@ -106,20 +109,41 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   // (pbrt-v4 §6.8.5's bound for this form is gamma(7) * sum |terms|; 8 eps is a safe cap).
   const glm::vec3 mag = glm::abs(p0) + glm::abs(b1 * (p1 - p0)) + glm::abs(b2 * (p2 - p0));
   h.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
-  glm::vec3 ng = unitGeometricNormal(p1 - p0, p2 - p0);
+  ng = unitGeometricNormal(p1 - p0, p2 - p0);
+  h.frontFace = glm::dot(ng, incoming) < 0.0f;
+  h.geometricNormal = h.frontFace ? ng : -ng;
+  return h;
+}
+
+}  // namespace
+
+SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& incoming) {
+  glm::vec3 ng;
+  SurfaceHit h = hitGeometry(scene, instance, triangle, b1, b2, incoming, ng);
+  const Instance& inst = scene.instances[instance];
+  const Mesh& mesh = scene.meshes[inst.mesh];
+  const Material& mat = scene.materials[mesh.material];
+  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
+  const glm::mat4& m = inst.transform;
   const Interpolated in = interpolate(mesh, idx, b1, b2);
   const glm::mat3 normalToWorld = normalMatrix(glm::mat3(m));
   glm::vec3 ns = safeNormalize(normalToWorld * in.normal, ng);
   ns = applyNormalMap(scene, mat, in, glm::mat3(m), normalToWorld, ns);
-  h.frontFace = glm::dot(ng, incoming) < 0.0f;
-  if (!h.frontFace) ng = -ng;
   // Shading normal on the viewer's side of the geometry (back faces of double-sided
   // materials shade with the flipped normal, glTF 3.9.6).
-  if (glm::dot(ns, ng) < 0.0f) ns = -ns;
-  h.geometricNormal = ng;
+  if (glm::dot(ns, h.geometricNormal) < 0.0f) ns = -ns;
   h.shadingNormal = ns;
   h.bsdf = materialAt(scene, mat, in);
   h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);
+  return h;
+}
+
+SurfaceHit surfaceEmissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1,
+                             float b2, const glm::vec3& incoming) {
+  glm::vec3 ng;
+  SurfaceHit h = hitGeometry(scene, instance, triangle, b1, b2, incoming, ng);
+  h.emission = emissionAt(scene, instance, triangle, b1, b2, ng, incoming);
   return h;
 }
 

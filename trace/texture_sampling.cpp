@@ -9,6 +9,9 @@ namespace photovr {
 namespace {
 
 int wrapIndex(int i, int n, Texture::Wrap mode) {
+  // Inside the texture every mode is the identity; only outside it need Repeat and Mirror
+  // run an integer division, which the texel's address waits on.
+  if (unsigned(i) < unsigned(n)) return i;
   switch (mode) {
     case Texture::Wrap::Clamp:
       return i < 0 ? 0 : (i >= n ? n - 1 : i);
@@ -37,12 +40,15 @@ ChannelTable makeChannelTable(bool srgb) {
 const ChannelTable kLinearChannel = makeChannelTable(false);
 const ChannelTable kSrgbChannel = makeChannelTable(true);
 
-glm::vec4 texel(const Texture& t, int x, int y, bool srgb) {
-  const uint8_t* p = &t.rgba[(size_t(wrapIndex(y, t.height, t.wrapT)) * t.width +
-                              size_t(wrapIndex(x, t.width, t.wrapS))) *
-                             4];
+// The texel at wrapped coordinates (x, y) already inside the texture.
+glm::vec4 texelAt(const Texture& t, int x, int y, bool srgb) {
+  const uint8_t* p = &t.rgba[(size_t(y) * t.width + size_t(x)) * 4];
   const ChannelTable& colour = srgb ? kSrgbChannel : kLinearChannel;
   return glm::vec4(colour[p[0]], colour[p[1]], colour[p[2]], kLinearChannel[p[3]]);
+}
+
+glm::vec4 texel(const Texture& t, int x, int y, bool srgb) {
+  return texelAt(t, wrapIndex(x, t.width, t.wrapS), wrapIndex(y, t.height, t.wrapT), srgb);
 }
 
 }  // namespace
@@ -57,9 +63,12 @@ glm::vec4 sampleTexture(const Texture& t, glm::vec2 uv, bool srgb) {
   const glm::vec2 q = p - 0.5f;
   const int x0 = int(std::floor(q.x)), y0 = int(std::floor(q.y));
   const float fx = q.x - float(x0), fy = q.y - float(y0);
+  // The four texels share two columns and two rows: wrap each once.
+  const int xa = wrapIndex(x0, t.width, t.wrapS), xb = wrapIndex(x0 + 1, t.width, t.wrapS);
+  const int ya = wrapIndex(y0, t.height, t.wrapT), yb = wrapIndex(y0 + 1, t.height, t.wrapT);
   // GL filters sRGB textures after decoding (EXT_texture_sRGB), so decode per texel first.
-  const glm::vec4 top = glm::mix(texel(t, x0, y0, srgb), texel(t, x0 + 1, y0, srgb), fx);
-  const glm::vec4 bottom = glm::mix(texel(t, x0, y0 + 1, srgb), texel(t, x0 + 1, y0 + 1, srgb), fx);
+  const glm::vec4 top = glm::mix(texelAt(t, xa, ya, srgb), texelAt(t, xb, ya, srgb), fx);
+  const glm::vec4 bottom = glm::mix(texelAt(t, xa, yb, srgb), texelAt(t, xb, yb, srgb), fx);
   return glm::mix(top, bottom, fy);
 }
 

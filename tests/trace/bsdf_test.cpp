@@ -242,6 +242,36 @@ TEST(Bsdf, SampleAgreesWithEvalAndPdf) {
   }
 }
 
+TEST(Bsdf, OneVertexServesEveryDirectionAsTheFreshCallsDo) {
+  // The path tracer prepares a BsdfVertex once per vertex, evaluates the light sample's
+  // direction with it, then samples it: every value must be the per-call functions' to the
+  // bit, and a sample's diffuse part (the denoiser's split) evalBsdfLobes's.
+  Sampler s = testSampler(15);
+  for (int i = 0; i < 2000; ++i) {
+    const BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
+    const glm::vec3 wo = sampleUniformSphere(s.next2());  // below the surface too
+    const BsdfVertex v = prepareBsdf(p, wo);
+    ASSERT_EQ(v.specularProbability, specularProbability(p, wo));
+    for (int k = 0; k < 4; ++k) {
+      const glm::vec3 wi = sampleUniformSphere(s.next2());
+      const BsdfEval e = evalBsdfAndPdf(v, wi);
+      const BsdfLobes f = evalBsdfLobes(p, wo, wi);
+      ASSERT_EQ(e.f.diffuse, f.diffuse);
+      ASSERT_EQ(e.f.specular, f.specular);
+      ASSERT_EQ(e.pdf, pdfBsdf(p, wo, wi));
+      const glm::vec2 u = s.next2();
+      const float uLobe = s.next();
+      const BsdfSample a = sampleBsdf(v, u, uLobe), b = sampleBsdf(p, wo, u, uLobe);
+      ASSERT_EQ(a.wi, b.wi);
+      ASSERT_EQ(a.weight, b.weight);
+      ASSERT_EQ(a.pdf, b.pdf);
+      if (!a.valid()) continue;
+      ASSERT_EQ(a.fDiffuse, evalBsdfLobes(p, wo, a.wi).diffuse);
+      ASSERT_EQ(a.f, evalBsdf(p, wo, a.wi));
+    }
+  }
+}
+
 TEST(Bsdf, Reciprocal) {
   // f(wo, wi) and f(wi, wo) differ only in the rounding of wo.h vs wi.h inside Fresnel:
   // 1e-5 relative.

@@ -1,6 +1,8 @@
 #include "trace/sampling.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -70,6 +72,26 @@ TEST(Rng, SameCountersSameNumbers) {
     d.*field += 1;
     EXPECT_NE(Sampler::make(d).key, Sampler::make(c).key);
   }
+}
+
+TEST(Rng, PathKeyThenBounceIsMake) {
+  // The path tracer hashes a path's counters once and each bounce from there; next() hashes
+  // the key once per sampler. Both must leave every number as hashCombine defines it.
+  const SampleCounters c{.pixel = 70, .eye = 1, .frame = 13, .sample = 3, .bounce = 0, .seed = 5};
+  const uint32_t path = Sampler::pathKey(c);
+  for (uint32_t bounce = 0; bounce < 9; ++bounce) {
+    SampleCounters d = c;
+    d.bounce = bounce;
+    Sampler a = Sampler::make(d), b = Sampler::forBounce(path, bounce);
+    EXPECT_EQ(a.key, b.key);
+    for (uint32_t dim = 0; dim < 8; ++dim) {
+      const float expected = toUnitFloat(hashCombine(a.key, dim));
+      EXPECT_EQ(a.next(), expected);
+      EXPECT_EQ(b.next(), expected);
+    }
+  }
+  Sampler zero;  // a default sampler draws as key 0 does
+  EXPECT_EQ(zero.next(), toUnitFloat(hashCombine(0u, 0u)));
 }
 
 TEST(Rng, UniformOverPixelsAndDimensions) {
@@ -188,6 +210,70 @@ TEST(Distribution1D, SamplesFollowTheFunctionAndSkipZeroCells) {
   EXPECT_EQ(d.sampleDiscrete(0.0f).index, 1);
   EXPECT_EQ(d.sampleDiscrete(kOneMinusEpsilon).index, 4);
   EXPECT_EQ(d.sampleContinuous(0.0f).index, 1);
+}
+
+// The constructor's cdf, recomputed as it does.
+std::vector<float> referenceCdf(const std::vector<float>& f) {
+  std::vector<float> func(f.size());
+  double sum = 0.0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    func[i] = f[i] > 0.0f ? std::min(f[i], std::numeric_limits<float>::max()) : 0.0f;
+    sum += func[i];
+  }
+  if (sum == 0.0) {
+    std::fill(func.begin(), func.end(), 1.0f);
+    sum = double(f.size());
+  }
+  std::vector<float> cdf(f.size() + 1, 0.0f);
+  double running = 0.0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    running += func[i];
+    cdf[i + 1] = float(running / sum);
+  }
+  cdf.back() = 1.0f;
+  return cdf;
+}
+
+// The cell std::upper_bound finds on that cdf, clamped to the cells: what findCell
+// returned before it had a guide table.
+int upperBoundCell(const std::vector<float>& cdf, float u) {
+  const int i = int(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1;
+  return std::clamp(i, 0, int(cdf.size()) - 2);
+}
+
+TEST(Distribution1D, GuidedSearchFindsTheCellsUpperBoundFinds) {
+  // Exactly the same cell for every u: the guide table must not change a single sample.
+  // Sizes below, at and above the guide's 256 cells; runs of zero cells; a spike that puts
+  // many cells into one guide bin; u on every cdf value and its neighbours, and outside
+  // [0, 1) (NaN, negative, 1 and above), where the full search runs.
+  std::vector<std::vector<float>> functions = {
+      {1.0f}, {0.0f, 2.0f}, {3.0f, 0.0f, 0.0f, 1.0f, 0.5f}};
+  for (int n : {63, 64, 65, 255, 256, 257, 1000, 2048}) {
+    std::vector<float> f(static_cast<size_t>(n), 0.0f);
+    for (int i = 0; i < n; ++i) f[i] = (i % 7 == 3) ? 0.0f : 1.0f + float((i * 37) % 11);
+    functions.push_back(f);
+    f.assign(size_t(n), 1e-3f);
+    f[size_t(n) / 3] = 1e6f;  // a spike: most of the mass in one cell
+    for (int i = n / 2; i < n / 2 + n / 8; ++i) f[i] = 0.0f;
+    functions.push_back(f);
+  }
+  Sampler s = testSampler(21);
+  for (const std::vector<float>& f : functions) {
+    const Distribution1D d(f);
+    std::vector<float> us = {0.0f, kOneMinusEpsilon, 1.0f, 1.5f, -0.25f, -0.0f, std::nanf("")};
+    for (int k = 0; k < 4000; ++k) us.push_back(s.next());
+    const std::vector<float> cdf = referenceCdf(f);
+    for (float edge : cdf) {  // the cell edges
+      for (float u : {edge, std::nextafter(edge, 0.0f), std::nextafter(edge, 1.0f)})
+        us.push_back(u);
+    }
+    for (int k = 1; k < 256; ++k) us.push_back(float(k) / 256.0f);  // the guide bins' edges
+    for (float u : us) {
+      const int expected = upperBoundCell(cdf, u);
+      ASSERT_EQ(d.sampleDiscrete(u).index, expected) << "n " << f.size() << " u " << u;
+      ASSERT_EQ(d.sampleContinuous(u).index, expected) << "n " << f.size() << " u " << u;
+    }
+  }
 }
 
 TEST(Distribution1D, AllZeroIsUniform) {
