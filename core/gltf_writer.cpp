@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <regex>
 #include <sstream>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -357,9 +356,36 @@ std::string lowerExtension(const std::string& path) {
 // tinygltf always writes a perspective camera's zfar, as 0 for an infinite one, which glTF
 // 2.0 forbids (§5.13: zfar > 0 when present; left out = infinite). It is dropped from the
 // JSON. tinygltf sorts members, so the one after zfar (znear, always written) follows it.
+// Length of the member at 'at' if it is an infinite zfar ("zfar": 0 or 0.0, with the comma
+// and spaces after it), else 0.
+size_t infiniteZfarLength(const std::string& j, size_t at) {
+  size_t i = at + 6;  // past "zfar"
+  const auto skipSpaces = [&] {
+    while (i < j.size() && std::isspace(static_cast<unsigned char>(j[i]))) ++i;
+  };
+  const auto take = [&](char c) { return i < j.size() && j[i] == c ? (++i, true) : false; };
+  skipSpaces();
+  if (!take(':')) return 0;
+  skipSpaces();
+  if (!take('0')) return 0;
+  if (take('.')) {
+    while (take('0')) continue;
+  }
+  skipSpaces();
+  if (!take(',')) return 0;
+  skipSpaces();
+  return i - at;
+}
+
 std::string withoutInfiniteZfar(const std::string& json) {
-  static const std::regex zero(R"("zfar"\s*:\s*0(\.0+)?\s*,\s*)");
-  return std::regex_replace(json, zero, "");
+  std::string out;
+  size_t from = 0;
+  for (size_t at; (at = json.find("\"zfar\"", from)) != std::string::npos;) {
+    const size_t n = infiniteZfarLength(json, at);
+    out.append(json, from, at - from + (n ? 0 : 6));  // a finite zfar is kept
+    from = at + (n ? n : 6);
+  }
+  return out + json.substr(from);
 }
 
 uint32_t readLe32(const std::string& s, size_t at) {
