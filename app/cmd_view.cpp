@@ -103,9 +103,9 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("view: unexpected argument '" + o.positional()[0] + "'");
   c.width = o.integer("--width", 320, 8, 4096);
   c.height = o.integer("--height", 360, 8, 4096);
-  checkFrameFitsInMemory(c.width, c.height, "--width/--height");
   c.eyes =
       StereoLayout::dk2(c.width, c.height, glm::radians(o.number("--overscan", 0.0f, 0.0f, 10.0f)));
+  checkFrameFitsInMemory(c.eyes.width, c.eyes.height, "--width/--height");
   c.window = parseSize(o, "--window", c.window);
   c.panel = parseSize(o, "--panel", {0, 0});
   if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "app/gl_context.h"
+#include "app/memory.h"
 #include "core/options.h"
 #include "app/sample_maps.h"
 #include "app/trace_output.h"
@@ -261,6 +262,9 @@ int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, const HmdSequ
   const auto source = openHeadPoseSource(spec, false, &why);
   if (!source) throw InputError("--hmd dk2", why);
   const double latency = o.latencyMs >= 0.0 ? o.latencyMs * 1e-3 : 1.0 / o.fps;
+  const StereoLayout eyes =
+      StereoLayout::dk2(r.width, r.height, float(glm::radians(o.overscanDeg)));
+  checkFrameFitsInMemory(eyes.width, eyes.height, "--width/--height with --overscan");
   HmdSequence sequence(r, o);
   std::printf("hmd: %s; timing: frame k rendered at t = k / %.3g s, shown at t + %.1f ms\n",
               source->status().c_str(), o.fps, latency * 1e3);
