@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/files.h"
+#include "core/gltf_json_types.h"
 #include "core/image_io.h"
 #include "core/mesh_util.h"
 
@@ -215,11 +216,13 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
   bool ok;
   if (isGlb(bytes)) {
     checkGlbLayout(bytes, path);
-    checkJsonDepth(bytes.data() + 20, std::min<size_t>(readU32(bytes, 12), bytes.size() - 20),
-                   path);
+    const size_t jsonSize = std::min<size_t>(readU32(bytes, 12), bytes.size() - 20);
+    checkJsonDepth(bytes.data() + 20, jsonSize, path);
+    checkGltfJsonTypes(bytes.data() + 20, jsonSize, path);
     ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, baseDir);
   } else {
     checkJsonDepth(bytes.data(), bytes.size(), path);
+    checkGltfJsonTypes(bytes.data(), bytes.size(), path);
     const char* text = reinterpret_cast<const char*>(bytes.data());
     ok = loader.LoadASCIIFromString(&model, &err, &warn, text, size, baseDir);
   }

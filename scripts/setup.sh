@@ -11,6 +11,7 @@ PACKAGES=(
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri mesa-utils
   libglfw3-dev libglm-dev
   libtinygltf-dev libstb-dev
+  nlohmann-json3-dev  # glTF member types, checked before tinygltf drops a wrong one
   libopenimageio-dev openimageio-tools
   libhidapi-dev
   libimgui-dev

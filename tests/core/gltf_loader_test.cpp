@@ -580,6 +580,71 @@ TEST(GltfLoaderErrors, ValuesOutsideTheSpecsRanges) {
       "in_range.gltf", withNode(R"({"name":"n","mesh":0,"rotation":[0,0,0,1.001]})", ""))));
 }
 
+// A member of the wrong type is an error naming it: tinygltf alone drops such a member and
+// loads the file as if it were absent (core/gltf_json_types.h).
+TEST(GltfLoaderErrors, MembersOfTheWrongTypeAreErrorsNamingThem) {
+  const std::string node = R"("nodes":[{"mesh":0,"name":"tri"}])";
+  const auto withNode = [&](const std::string& members) {
+    return replaced(triangleGltf(), node, R"("nodes":[{"mesh":0,"name":"tri",)" + members + "}]");
+  };
+  const auto withMaterial = [&](const std::string& material) {
+    return replaced(replaced(triangleGltf(), R"("indices":1)", R"("indices":1,"material":0)"),
+                    R"("buffers":)", R"("materials":[)" + material + R"(],"buffers":)");
+  };
+  const struct {
+    std::string json, message;
+  } cases[] = {
+      {withNode(R"("translation":"abc")"),
+       "nodes[0].translation: expected an array of 3 numbers, got a string"},
+      {withNode(R"("rotation":[0,0,1])"),
+       "nodes[0].rotation: expected an array of 4 numbers, got an array of 3 numbers"},
+      {withNode(R"("scale":[1,"2",1])"),
+       "nodes[0].scale: expected an array of 3 numbers, got "
+       "an array of 3 values"},
+      {withNode(R"("children":[0.5])"), "nodes[0].children: expected an array of integers"},
+      {replaced(triangleGltf(), R"("mesh":0)", R"("mesh":"0")"),
+       "nodes[0].mesh: expected an integer, got a string"},
+      {replaced(triangleGltf(), R"("mesh":0)", R"("mesh":0.5)"),
+       "nodes[0].mesh: expected an integer, got the number 0.5"},
+      {replaced(triangleGltf(), R"("POSITION":0)", R"("POSITION":null)"),
+       "meshes[0].primitives[0].attributes: expected an object of integers"},
+      {withMaterial(R"({"doubleSided":"yes"})"),
+       "materials[0].doubleSided: expected true or false, got a string"},
+      {withMaterial(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1]}})"),
+       "materials[0].pbrMetallicRoughness.baseColorFactor: expected an array of 4 numbers"},
+      {withMaterial(R"({"emissiveTexture":{"index":0,"extensions":{"KHR_texture_transform":)"
+                    R"({"offset":[0.5]}}}})"),
+       "materials[0].emissiveTexture.extensions.KHR_texture_transform.offset: expected an array "
+       "of 2 numbers"},
+      {replaced(triangleGltf(), R"("count":3,"type":"SCALAR")", R"("count":"3","type":"SCALAR")"),
+       "accessors[1].count: expected an integer, got a string"},
+      {withNode(R"("extensions":{"KHR_lights_punctual":{"light":[0]}})"),
+       "nodes[0].extensions.KHR_lights_punctual.light: expected an integer, got an array"},
+      {replaced(triangleGltf(), R"("scene":0,)",
+                R"("scene":0,"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point",)"
+                R"("intensity":"bright"}]}},)"),
+       "extensions.KHR_lights_punctual.lights[0].intensity: expected a number, got a string"},
+      {"[1, 2]", "the glTF JSON is an array of 2 numbers, not an object"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const std::string error = loadError(writeGltf("type" + std::to_string(i++) + ".gltf", c.json));
+    EXPECT_NE(error.find(c.message), std::string::npos) << error;
+  }
+  // The same check reads a .glb's JSON chunk (§4.4: header, then the chunk padded to 4).
+  std::string json = withNode(R"("translation":{"x":1})");
+  json.append((4 - json.size() % 4) % 4, ' ');
+  std::string glb = "glTF";
+  append<uint32_t>(glb, {2u, uint32_t(20 + json.size()), uint32_t(json.size()), 0x4E4F534Au});
+  const std::string error = loadError(writeGltf("type.glb", glb + json));
+  EXPECT_NE(error.find("nodes[0].translation: expected an array of 3 numbers, got an object"),
+            std::string::npos)
+      << error;
+  // Members photovr does not read are not checked.
+  EXPECT_NO_THROW(loadGltf(writeGltf(
+      "type_ok.gltf", withNode(R"("translation":[1,2,3],"extras":{"translation":"abc"})"))));
+}
+
 TEST(GltfLoaderErrors, NodeCycle) {
   const std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])",
                                     R"("nodes":[{"mesh":0,"children":[1]},{"children":[0]}])");

@@ -1,0 +1,20 @@
+// The types of the glTF 2.0 members photovr reads, checked on the JSON itself before
+// tinygltf parses it. tinygltf silently drops an optional member of the wrong type
+// (`"translation": "abc"` loads as no translation), so a malformed file would render as a
+// different scene instead of failing; this check turns it into one error naming the member,
+// e.g. `nodes[3].translation: expected an array of 3 numbers, got a string`.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace photovr {
+
+// Throws InputError(path, ...) for the first member of the wrong type or array length
+// among those the loader uses (glTF 2.0 §5, KHR_lights_punctual,
+// KHR_materials_emissive_strength, KHR_texture_transform). Members photovr does not read
+// are not checked; JSON that does not parse is left to tinygltf's own message.
+void checkGltfJsonTypes(const uint8_t* json, size_t size, const std::string& path);
+
+}  // namespace photovr
