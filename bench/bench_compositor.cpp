@@ -70,8 +70,9 @@ struct Timing {
   std::string scene;
   std::vector<PoseError> errors;  // moved, turned
   PassTime gbuffer;
-  PassTime timewarp, rotationOnly;          // the compositor (gl/timewarp.h), one pass
-  PassTime asRendered;                      // the same without re-projection: its floor
+  PassTime timewarp, rotationOnly;  // the compositor (gl/timewarp.h), one pass
+  PassTime asRendered;              // the same without re-projection
+  PassTime floor;  // lens table, one depth fetch, three taps: any such pass's least cost
   PassTime gridReproject, distort, output;  // the reference chain it replaced
   PassTime chain() const { return gridReproject + distort + output; }
 };
@@ -105,11 +106,12 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
        [&] { comp.run(color, depth, from, turned, 1.0f); },
        [&] { comp.run(color, depth, from, from, 1.0f, false); },
        [&] { grid.run(color, depth, from, to); }, [&] { distorter.run(grid.colorTexture()); },
-       [&] { comp.output().run(distorter.panelTexture(), 1.0f); }});
+       [&] { comp.output().run(distorter.panelTexture(), 1.0f); },
+       [&] { comp.timewarp().runPanelFloor(color, depth, from, comp.output()); }});
   Timing t;
   t.scene = name;
   t.gbuffer = best[0], t.timewarp = best[1], t.rotationOnly = best[2], t.asRendered = best[3];
-  t.gridReproject = best[4], t.distort = best[5], t.output = best[6];
+  t.gridReproject = best[4], t.distort = best[5], t.output = best[6], t.floor = best[7];
   const auto panelOf = [&](const std::array<EyeCamera, 2>& at) {
     pass.render(gpu, at, viewProjections(at));
     distorter.run(color);
@@ -346,18 +348,18 @@ int run(const Options& options) {
   std::printf(
       "bench_compositor: eyes %dx%d x 2, panel %dx%d (rotation 90), best of %d rounds; GL: %s\n",
       c.eyeW, c.eyeH, c.panelW, c.panelH, c.repeats, ctx->renderer().c_str());
-  std::printf("%-8s %9s | %-31s | %-20s | %-36s | %-17s\n", "", "",
-              "compositor (timewarp, one pass)", "no re-projection",
+  std::printf("%-8s %9s | %-31s | %-20s | %-15s | %-36s | %-17s\n", "", "",
+              "compositor (timewarp, one pass)", "no re-projection", "floor (taps)",
               "reference chain (grid step 2)", "by CPU time");
-  std::printf("%-8s %9s | %9s %9s %11s | %11s %8s | %8s %8s %8s %9s | %8s %8s\n", "scene",
-              "gbuffer", "moved", "turned", "/gbuffer", "as rendered", "/gbuffer", "reproj",
-              "distort", "output", "/gbuffer", "fused", "chain");
+  std::printf("%-8s %9s | %9s %9s %11s | %11s %8s | %6s %8s | %8s %8s %8s %9s | %8s %8s\n", "scene",
+              "gbuffer", "moved", "turned", "/gbuffer", "as rendered", "/gbuffer", "floor",
+              "/gbuffer", "reproj", "distort", "output", "/gbuffer", "fused", "chain");
   std::ofstream csv(c.out + "/bench_compositor.csv");
   csv << "scene,eye_width,eye_height,panel_width,panel_height,gbuffer_ms,timewarp_ms,"
          "timewarp_rotation_only_ms,timewarp_over_gbuffer,grid_reproject_step2_ms,distort_ms,"
          "output_ms,chain_over_gbuffer,gbuffer_cpu_ms,timewarp_cpu_ms,chain_cpu_ms,"
          "timewarp_over_gbuffer_cpu,chain_over_gbuffer_cpu,as_rendered_ms,"
-         "as_rendered_over_gbuffer\n";
+         "as_rendered_over_gbuffer,floor_ms,floor_over_gbuffer\n";
   std::vector<Timing> timings;
   for (const std::string& name : c.scenes) {
     const Timing& t = timings.emplace_back(timeScene(name, c, layered));
@@ -365,21 +367,25 @@ int run(const Options& options) {
     const double fusedCpu = t.timewarp.cpu / t.gbuffer.cpu,
                  chainCpu = t.chain().cpu / t.gbuffer.cpu;
     const double asRendered = t.asRendered.wall / t.gbuffer.wall;
+    const double floorRatio = t.floor.wall / t.gbuffer.wall;
     std::printf(
-        "%-8s %9.1f | %9.1f %9.1f %11.3f | %11.1f %8.3f | %8.1f %8.1f %8.1f %9.3f | %8.3f %8.3f\n",
+        "%-8s %9.1f | %9.1f %9.1f %11.3f | %11.1f %8.3f | %6.1f %8.3f | %8.1f %8.1f %8.1f %9.3f | "
+        "%8.3f %8.3f\n",
         name.c_str(), t.gbuffer.wall, t.timewarp.wall, t.rotationOnly.wall, fused,
-        t.asRendered.wall, asRendered, t.gridReproject.wall, t.distort.wall, t.output.wall, chain,
-        fusedCpu, chainCpu);
+        t.asRendered.wall, asRendered, t.floor.wall, floorRatio, t.gridReproject.wall,
+        t.distort.wall, t.output.wall, chain, fusedCpu, chainCpu);
     csv << name << ',' << c.eyeW << ',' << c.eyeH << ',' << c.panelW << ',' << c.panelH << ','
         << t.gbuffer.wall << ',' << t.timewarp.wall << ',' << t.rotationOnly.wall << ',' << fused
         << ',' << t.gridReproject.wall << ',' << t.distort.wall << ',' << t.output.wall << ','
         << chain << ',' << t.gbuffer.cpu << ',' << t.timewarp.cpu << ',' << t.chain().cpu << ','
-        << fusedCpu << ',' << chainCpu << ',' << t.asRendered.wall << ',' << asRendered << '\n';
+        << fusedCpu << ',' << chainCpu << ',' << t.asRendered.wall << ',' << asRendered << ','
+        << t.floor.wall << ',' << floorRatio << '\n';
   }
   std::printf(
       "(ms, best of %d alternating rounds; moved: 1.5 deg yaw + 1 cm, turned: 1.5 deg yaw; as "
-      "rendered: the frame at its own pose, the lens and display transform only; target: "
-      "compositor <= 0.25 x gbuffer)\n",
+      "rendered: the frame at its own pose, the lens and display transform only; floor: the lens "
+      "table, one depth fetch and three bilinear taps per pixel, the least any depth "
+      "re-projecting lens pass costs here; target: compositor <= 0.25 x gbuffer)\n",
       c.repeats);
   printErrors(timings, c);
   std::ofstream mask(c.out + "/bench_compositor_mask.csv");

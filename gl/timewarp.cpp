@@ -191,6 +191,19 @@ void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
   drawPanel(panelProgram_, out);
 }
 
+void Timewarp::runPanelFloor(unsigned colorArray, unsigned depthArray,
+                             const std::array<EyeCamera, 2>& at, PanelOutput& out) {
+  if (!floorProgram_)
+    floorProgram_ = std::make_unique<Program>(
+        std::vector<Program::Stage>{{GL_COMPUTE_SHADER, "timewarp_floor.comp"}},
+        std::vector<std::string>{});
+  checkPanel(out);
+  setUniforms(at, at, 2, 1.0f, out.rotation());
+  api::BindTextureUnit(COMP_TW_DEPTH, depthArray);
+  bindColor(colorArray);
+  drawPanel(*floorProgram_, out);
+}
+
 void Timewarp::runPanelAsRendered(unsigned colorArray, const std::array<EyeCamera, 2>& at,
                                   float exposure, PanelOutput& out) {
   checkPanel(out);

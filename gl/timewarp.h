@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -56,6 +57,11 @@ class Timewarp {
   // across a silhouette it blends, as the distortion chain does.
   void runPanelAsRendered(unsigned colorArray, const std::array<EyeCamera, 2>& at, float exposure,
                           PanelOutput& out);
+  // A measurement, never shown (bench_compositor): the least any depth re-projecting lens
+  // pass does per pixel the lens shows (shaders/timewarp_floor.comp), timed to bound what
+  // this machine's GL can reach.
+  void runPanelFloor(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& at,
+                     PanelOutput& out);
   // Pose B's eye buffers instead of the panel (eyes [0, eyeCount)).
   void runEyes(unsigned colorArray, unsigned depthArray, const std::array<EyeCamera, 2>& from,
                const std::array<EyeCamera, 2>& to, int eyeCount = 2);
@@ -91,6 +97,7 @@ class Timewarp {
   TimewarpParams params_;
   std::optional<std::array<FovTangents, 2>> field_;  // setShownField
   Program panelProgram_, asRenderedProgram_, eyeProgram_, tileProgram_;
+  std::unique_ptr<Program> floorProgram_;  // runPanelFloor's, made on its first use
   unsigned uniforms_ = 0, stats_ = 0, linearSampler_ = 0;
   std::vector<bool> lensSees_;        // per landscape panel texel, as stored
   std::array<int, 2> lensVisible_{};  // panel pixels each eye's lens shows

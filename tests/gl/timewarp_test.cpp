@@ -182,6 +182,33 @@ TEST(Timewarp, PanelAsRenderedIsTheDistortionChain) {
   EXPECT_EQ(t.stats(0).reprojected + t.stats(1).reprojected, d.shown);
 }
 
+// The bench's floor pass (runPanelFloor) must do the work it stands for: on a frame of one
+// colour, every output texel of the lens's groups shows that colour from the three taps
+// (exact: the taps of a uniform image are the colour, stored as UNORM8 by rounding), and
+// the rest of the panel stays black.
+TEST(Timewarp, FloorPassTapsTheFrameOverTheLensGroups) {
+  osmesaContext();
+  const gl::LensParams lens = smallPanel();
+  const int w = 48, h = 54;
+  const auto cams = dk2Eyes(Pose{}, w, h);
+  std::array<EyeImage, 2> flat = {render(cams[0]), render(cams[1])};
+  for (auto& eye : flat) std::fill(eye.color.begin(), eye.color.end(), glm::vec4(0.2, 0.6, 1, 1));
+  const EyeArrays eyes(flat, w, h);
+  gl::Timewarp t(lens, w, h, dk2Fov());
+  gl::PanelOutput out(lens.hResolution, lens.vResolution, 90);
+  t.runPanelFloor(eyes.color(), eyes.depth(), cams, out);
+  int coloured = 0, other = 0;
+  for (const glm::u8vec4& p : out.read()) {
+    if (p == glm::u8vec4(51, 153, 255, 255))
+      ++coloured;
+    else if (p != glm::u8vec4(0, 0, 0, 255))
+      ++other;
+  }
+  EXPECT_EQ(other, 0);
+  // The lens shows ~70 % of the panel; its 8x8 groups cover more.
+  EXPECT_GT(coloured, lens.hResolution * lens.vResolution / 2);
+}
+
 // Moved head: the timewarp's panel of the frame rendered at A against the distortion chain
 // on the frame traced at B. They differ where re-projection must guess (disocclusions,
 // silhouettes), and by the resampling of two different pixel grids.
