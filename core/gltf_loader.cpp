@@ -719,12 +719,15 @@ void readAttributes(const Loader& ld, const tg::Primitive& prim, Mesh& mesh,
   if (!mesh.uv1.empty()) checkCount(ld, mesh.uv1.size(), n, where + " TEXCOORD_1");
 }
 
-// Returns false if any normal has zero length (it cannot be normalised).
+// Returns false if any normal has zero length (it cannot be normalised). Scaled by its
+// largest component first, so that neither a huge normal (1e30: its squared length
+// overflows to inf and n / inf = 0) nor a tiny one (1e-30: it underflows to 0) is lost.
 bool normalizeAll(std::vector<glm::vec3>& normals) {
   for (glm::vec3& n : normals) {
-    const float len = glm::length(n);
-    if (!(len > 0.0f)) return false;
-    n /= len;
+    const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    if (!(largest > 0.0f)) return false;
+    n /= largest;
+    n /= glm::length(n);
   }
   return true;
 }

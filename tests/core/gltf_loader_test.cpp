@@ -513,6 +513,30 @@ TEST(GltfLoaderErrors, NanVertex) {
   EXPECT_NE(error.find("non-finite POSITION"), std::string::npos) << error;
 }
 
+// Normals are normalised whatever their magnitude: 1e30 squared overflows float and 1e-30
+// squared underflows it, so a plain v / length(v) gave 0 (found by the glTF fuzz test).
+TEST(GltfLoader, HugeAndTinyNormalsBecomeUnitNormals) {
+  std::string b = triangleBuffer();
+  append<uint16_t>(b, {0});  // pad the indices to 4 bytes
+  append<float>(b, {0, 0, 1e30f, 0, 3e-30f, 0, 4e-30f, 0, 3e-30f});
+  std::string json = replaced(triangleGltf(b), R"("POSITION":0})", R"("POSITION":0,"NORMAL":2})");
+  json = replaced(json, R"("byteLength":6}])",
+                  R"("byteLength":6},{"buffer":0,"byteOffset":44,"byteLength":36}])");
+  json = replaced(json, R"("type":"SCALAR"}])",
+                  R"("type":"SCALAR"},{"bufferView":2,"componentType":5126,"count":3,)"
+                  R"("type":"VEC3"}])");
+  const Scene scene = loadGltf(writeGltf("normals.gltf", json));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const auto& n = scene.meshes[0].normals;
+  ASSERT_EQ(n.size(), 3u);
+  // Float rounding of one division by the largest component and one by a length in
+  // [1, sqrt 3]: a few ulps.
+  EXPECT_NEAR(n[0].z, 1.0f, 1e-6f);
+  EXPECT_NEAR(n[1].y, 1.0f, 1e-6f);
+  EXPECT_NEAR(n[2].x, 0.8f, 1e-6f);
+  EXPECT_NEAR(n[2].z, 0.6f, 1e-6f);
+}
+
 TEST(GltfLoaderErrors, ZeroAreaOnlyMesh) {
   std::string b;
   append<float>(b, {1, 1, 1, 1, 1, 1, 1, 1, 1});
