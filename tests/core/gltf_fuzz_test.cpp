@@ -29,9 +29,9 @@ constexpr int kIterations = 3000;
 // Positions, normals and uvs of one triangle (96 bytes), then its three 16-bit indices
 // (6 bytes), as base64.
 std::string triangleBuffer() {
-  const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,   // positions
-                        0, 0, 1, 0, 0, 1, 0, 0, 1,   // normals
-                        0, 0, 1, 0, 0, 1};           // uvs
+  const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,  // positions
+                        0, 0, 1, 0, 0, 1, 0, 0, 1,  // normals
+                        0, 0, 1, 0, 0, 1};          // uvs
   std::string bytes(reinterpret_cast<const char*>(data), sizeof(data));
   const uint16_t indices[] = {0, 1, 2};
   bytes.append(reinterpret_cast<const char*>(indices), sizeof(indices));
@@ -87,10 +87,9 @@ std::string seedGltf() {
              {"bufferView":3,"componentType":5123,"count":3,"type":"SCALAR"}]})";
 }
 
-const char* const kExtremes[] = {"-1",         "0",           "1e39",       "-1e39",
-                                 "1e-45",      "4294967295",  "4294967296", "2147483648",
-                                 "-2147483649", "0.5",        "1e308",      "3",
-                                 "65536",      "18446744073709551616"};
+const char* const kExtremes[] = {
+    "-1",         "0",           "1e39", "-1e39", "1e-45", "4294967295", "4294967296",
+    "2147483648", "-2147483649", "0.5",  "1e308", "3",     "65536",      "18446744073709551616"};
 
 // A number token (digits, sign, point, exponent) starting at or after 'from', if any.
 bool findNumber(const std::string& s, size_t from, size_t& begin, size_t& end) {
