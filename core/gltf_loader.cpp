@@ -598,6 +598,10 @@ TextureRef textureRef(Loader& ld, const Info& info, const std::string& where) {
   if (info.index < 0) return ref;
   ref.texCoord = info.texCoord;
   applyTextureTransform(info.extensions, ref);
+  const TextureTransform& t = ref.transform;
+  if (!(std::isfinite(t.offset.x) && std::isfinite(t.offset.y) && std::isfinite(t.rotation) &&
+        std::isfinite(t.scale.x) && std::isfinite(t.scale.y)))
+    ld.fail(where + ": KHR_texture_transform offset, rotation and scale must be finite");
   if (ref.texCoord < 0 || ref.texCoord > 1) {
     ld.warn(where + ": uses TEXCOORD_" + std::to_string(ref.texCoord) +
             ", only 0 and 1 are supported; using the material factor");
@@ -644,6 +648,31 @@ void convertTextures(Loader& ld, const tg::Material& gm, Material& m, const std:
   m.emissiveTexture = textureRef(ld, gm.emissiveTexture, where + " emissiveTexture");
 }
 
+bool within(float v, float lo, float hi) {
+  return v >= lo && v <= hi;  // false for NaN
+}
+
+// glTF 2.0 §5.19-5.22's ranges for what reflects light: base colour, metallic, roughness
+// and occlusion strength in [0, 1] (above 1 a surface reflects more than it receives, and
+// each bounce multiplies the excess), alpha cutoff >= 0. Emission is radiance, not a ratio:
+// any emissive factor x strength >= 0 up to 1e20 is taken (files written before
+// KHR_materials_emissive_strength put HDR emission in the factor), as lights are.
+void checkMaterial(const Loader& ld, const Material& m) {
+  const std::string what = "material " + named(m.name) + ": ";
+  const glm::vec4 c = m.baseColorFactor;
+  if (!(within(c.r, 0, 1) && within(c.g, 0, 1) && within(c.b, 0, 1) && within(c.a, 0, 1)))
+    ld.fail(what + "baseColorFactor must be in [0, 1]");
+  if (!within(m.metallicFactor, 0, 1) || !within(m.roughnessFactor, 0, 1))
+    ld.fail(what + "metallicFactor and roughnessFactor must be in [0, 1]");
+  if (!within(m.occlusionStrength, 0, 1)) ld.fail(what + "occlusion strength must be in [0, 1]");
+  if (!within(m.alphaCutoff, 0, 1e30f)) ld.fail(what + "alphaCutoff must be >= 0");
+  if (!std::isfinite(m.normalScale)) ld.fail(what + "normal scale must be finite");
+  const glm::vec3 e = m.emissiveFactor;
+  const float brightest = std::max({e.r, e.g, e.b}) * m.emissiveStrength;
+  if (!(e.r >= 0 && e.g >= 0 && e.b >= 0 && m.emissiveStrength >= 0 && brightest <= 1e20f))
+    ld.fail(what + "emissive factor and strength must be >= 0 with their product at most 1e20");
+}
+
 Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
   Material m;
   m.name = gm.name.empty() ? "material#" + std::to_string(index) : gm.name;
@@ -659,6 +688,7 @@ Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
   m.alphaMode = alphaMode(ld, gm, where);
   m.alphaCutoff = float(gm.alphaCutoff);
   m.doubleSided = gm.doubleSided;
+  checkMaterial(ld, m);
   convertTextures(ld, gm, m, where);
   return m;
 }
@@ -904,17 +934,21 @@ void addCamera(Loader& ld, const tg::Node& node, const glm::mat4& world, const s
     ld.warn("camera " + named(camera.name) + ": only perspective cameras are supported; skipped");
     return;
   }
-  // glTF 2.0 §5.13: 0 < yfov (< pi for a picture), znear > 0, zfar > znear when given.
+  // glTF 2.0 §5.13: 0 < yfov (< pi for a picture), znear > 0, zfar > znear when given;
+  // checked on the float values the renderer uses (a yfov of 1e-46 is 0 as a float, and
+  // one below ~1e-38 has an infinite 1 / tan(yfov / 2)).
   const tg::PerspectiveCamera& p = gc.perspective;
-  if (!(p.yfov > 0.0 && p.yfov < glm::pi<double>()) || !(p.znear > 0.0) ||
-      !std::isfinite(p.znear) || !(p.aspectRatio >= 0.0) || !std::isfinite(p.zfar) ||
-      (p.zfar != 0.0 && !(p.zfar > p.znear)))
+  camera.yfov = float(p.yfov);
+  camera.aspect = float(p.aspectRatio);
+  camera.znear = float(p.znear);
+  camera.zfar = float(p.zfar);
+  if (!(camera.yfov > 0.0f && camera.yfov < glm::pi<float>()) ||
+      !std::isfinite(1.0f / std::tan(0.5f * camera.yfov)) ||
+      !(camera.znear >= std::numeric_limits<float>::min()) || !std::isfinite(camera.znear) ||
+      !(camera.aspect >= 0.0f) || !std::isfinite(camera.aspect) || !std::isfinite(camera.zfar) ||
+      (camera.zfar != 0.0f && !(camera.zfar > camera.znear)))
     ld.fail("camera " + named(camera.name) +
             ": needs 0 < yfov < pi, znear > 0 and zfar > znear (or none)");
-  camera.yfov = float(gc.perspective.yfov);
-  camera.aspect = float(gc.perspective.aspectRatio);
-  camera.znear = float(gc.perspective.znear);
-  camera.zfar = float(gc.perspective.zfar);
   camera.position = glm::vec3(world[3]);
   camera.orientation = rotationOf(world);
   ld.scene.cameras.push_back(camera);

@@ -146,9 +146,10 @@ std::string mutateGlb(std::string s, std::mt19937& rng) {
   return s;
 }
 
-bool finite(const glm::mat4& m) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
+template <int N>
+bool finite(const glm::mat<N, N, float>& m) {
+  for (int c = 0; c < N; ++c)
+    for (int r = 0; r < N; ++r)
       if (!std::isfinite(m[c][r])) return false;
   return true;
 }
@@ -172,6 +173,26 @@ void expectSceneKeepsThePromises(const Scene& scene, const std::string& input) {
     ASSERT_TRUE(i.mesh >= 0 && size_t(i.mesh) < scene.meshes.size()) << input;
     ASSERT_TRUE(finite(i.transform)) << input;
   }
+  for (const Material& m : scene.materials) {
+    const glm::vec4 c = m.baseColorFactor;
+    ASSERT_TRUE(glm::all(glm::greaterThanEqual(c, glm::vec4(0))) &&
+                glm::all(glm::lessThanEqual(c, glm::vec4(1))))
+        << input;
+    ASSERT_TRUE(m.metallicFactor >= 0 && m.metallicFactor <= 1) << input;
+    ASSERT_TRUE(m.roughnessFactor >= 0 && m.roughnessFactor <= 1) << input;
+    const glm::vec3 e = m.emission();
+    for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(e[k]) && e[k] >= 0) << input;
+    for (const TextureRef* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                &m.occlusionTexture, &m.emissiveTexture}) {
+      ASSERT_TRUE(t->texture < int(scene.textures.size())) << input;
+      ASSERT_TRUE(finite(t->transform.matrix())) << input;
+    }
+  }
+  for (const Texture& t : scene.textures)
+    ASSERT_EQ(t.rgba.size(), size_t(t.width) * size_t(t.height) * 4) << input;
+  for (const Camera& c : scene.cameras)
+    ASSERT_TRUE(c.yfov > 0 && c.yfov < 3.1416f && c.znear > 0 && std::isfinite(c.position.x))
+        << input;
   for (const Light& l : scene.lights) {
     ASSERT_TRUE(std::isfinite(l.intensity) && l.intensity >= 0.0f) << input;
     for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(l.color[k]) && l.color[k] >= 0.0f);

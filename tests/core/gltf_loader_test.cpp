@@ -591,6 +591,8 @@ TEST(GltfLoaderErrors, ValuesOutsideTheSpecsRanges) {
       {camera(R"("yfov":1,"znear":-0.1)"), "znear > 0"},
       {camera(R"("yfov":1,"znear":1,"zfar":0.5)"), "zfar > znear"},
       {camera(R"("yfov":4,"znear":0.1)"), "0 < yfov < pi"},
+      {camera(R"("yfov":1e-46,"znear":0.1)"), "0 < yfov < pi"},  // 0 as a float
+      {camera(R"("yfov":1,"znear":1e-46)"), "znear > 0"},
       {withNode(R"({"name":"n","mesh":0,"rotation":[0,0,0,0]})", ""),
        "rotation is not a unit quaternion"},
   };
@@ -602,6 +604,42 @@ TEST(GltfLoaderErrors, ValuesOutsideTheSpecsRanges) {
   // Inside the ranges they load: a slightly non-unit quaternion is normalised.
   EXPECT_NO_THROW(loadGltf(writeGltf(
       "in_range.gltf", withNode(R"({"name":"n","mesh":0,"rotation":[0,0,0,1.001]})", ""))));
+}
+
+// Material factors outside glTF 2.0's ranges are errors naming the material: a base colour
+// or metallic above 1 reflects more light than arrives (every bounce multiplies it), and a
+// roughness of 1e39 is inf in float. HDR emission (factor above 1) is radiance and loads.
+TEST(GltfLoaderErrors, MaterialFactorsOutsideTheirRanges) {
+  const auto withMaterial = [](const std::string& material) {
+    return replaced(replaced(triangleGltf(), R"("indices":1)", R"("indices":1,"material":0)"),
+                    R"("buffers":)",
+                    R"("materials":[{"name":"m",)" + material + R"(}],"buffers":)");
+  };
+  const struct {
+    std::string json, message;
+  } cases[] = {
+      {R"("pbrMetallicRoughness":{"baseColorFactor":[1.5,1,1,1]})",
+       "material 'm': baseColorFactor must be in [0, 1]"},
+      {R"("pbrMetallicRoughness":{"baseColorFactor":[1,-0.1,1,1]})", "baseColorFactor"},
+      {R"("pbrMetallicRoughness":{"metallicFactor":-1})",
+       "material 'm': metallicFactor and roughnessFactor must be in [0, 1]"},
+      {R"("pbrMetallicRoughness":{"roughnessFactor":1e39})", "roughnessFactor must be in"},
+      {R"("occlusionTexture":{"index":0,"strength":2})", "occlusion strength must be in [0, 1]"},
+      {R"("alphaMode":"MASK","alphaCutoff":-0.5)", "alphaCutoff must be >= 0"},
+      {R"("emissiveFactor":[1,-1,0])", "emissive factor and strength must be >= 0"},
+      {R"("emissiveFactor":[1e30,0,0])", "at most 1e20"},
+      {R"("emissiveTexture":{"index":0,"extensions":{"KHR_texture_transform":{"scale":[1e39,1]}}})",
+       "material 'm' emissiveTexture: KHR_texture_transform offset, rotation and scale must be "
+       "finite"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    const std::string error =
+        loadError(writeGltf("material" + std::to_string(i++) + ".gltf", withMaterial(c.json)));
+    EXPECT_NE(error.find(c.message), std::string::npos) << error;
+  }
+  const Scene hdr = loadGltf(writeGltf("hdr.gltf", withMaterial(R"("emissiveFactor":[4,2,1])")));
+  EXPECT_EQ(hdr.materials.at(0).emission(), glm::vec3(4, 2, 1));
 }
 
 // A member of the wrong type is an error naming it: tinygltf alone drops such a member and
