@@ -39,6 +39,9 @@ PoseKey parseRow(const std::string& line, const std::string& where) {
     double x = 0.0;
     if (!parseNumber(field, x))
       throw InputError(where, "'" + trim(field) + "' is not a number (expected " + kHeader + ")");
+    // Poses are float: a finite double such as 1e53 would become an infinite position.
+    if (!std::isfinite(float(x)))
+      throw InputError(where, "'" + trim(field) + "' is beyond float range (about 3.4e38)");
     v.push_back(x);
   }
   if (v.size() != 7 || line.back() == ',')

@@ -65,6 +65,9 @@ TEST(PoseScript, BadCsvNamesTheFileAndLine) {
             "walk.csv: line 2: 'zero' is not a number (expected t,x,y,z,yaw,pitch,roll)");
   EXPECT_EQ(errorOf("t,x,y,z,yaw,pitch,roll\n1,0,0,0,0,0,0\n1,0,0,0,0,0,0\n"),
             "walk.csv: line 3: t must increase from row to row");
+  // Found by InputFilesFuzz: finite as a double, infinite as the float pose.
+  EXPECT_EQ(errorOf("t,x,y,z,yaw,pitch,roll\n0,1e53,0,0,0,0,0\n"),
+            "walk.csv: line 2: '1e53' is beyond float range (about 3.4e38)");
   EXPECT_EQ(errorOf("t,x,y,z,yaw,pitch,roll\n0,0,0,0,0,0,nan\n"),
             "walk.csv: line 2: 'nan' is not a number (expected t,x,y,z,yaw,pitch,roll)");
   for (const char* bad :
