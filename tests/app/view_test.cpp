@@ -34,8 +34,9 @@ double meanLevel(const Image8& a, int x0, int y0, int x1, int y1) {
 }
 
 TEST(View, DrawsTheOverlayOverTheCompositedFrameUnderXvfb) {
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs it)";
+  // Not a skip: scripts/setup.sh installs xvfb, so a missing xvfb-run is a broken set-up.
+  ASSERT_EQ(std::system("command -v xvfb-run > /dev/null 2>&1"), 0)
+      << "xvfb-run is not installed (scripts/setup.sh installs it)";
   const std::string dir = testing::tempDir("view");
   const std::string script = dir + "/still.csv";
   std::ofstream(script) << "t,x,y,z,yaw,pitch,roll\n0,0,0,0,0,0,0\n10,0,0,0,0,0,0\n";

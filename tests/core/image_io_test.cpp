@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -31,24 +32,43 @@ TEST(ImageIo, ExrRoundTripIsExact) {
   EXPECT_EQ(readImageF(path).data, img.data);
 }
 
-TEST(ImageIo, FailedWriteLeavesNothingBehind) {
-  const std::string dir = tempPath("nowrite");
-  std::filesystem::create_directories(dir);
-  std::filesystem::permissions(
-      dir, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
-  Image8 img(1, 1, 3);
-  bool threw = false;
+// The error of a failed write, or "" when writeImage did not throw.
+template <class Img>
+std::string writeError(const std::string& path, const Img& img) {
   try {
-    writeImage(dir + "/x.png", img);
+    writeImage(path, img);
   } catch (const InputError& e) {
-    threw = true;
-    EXPECT_NE(std::string(e.what()).find(dir + "/x.png"), std::string::npos);
+    return e.what();
   }
-  std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
-  // root ignores directory permissions: then the write succeeds, which is also fine.
-  if (threw) {
-    EXPECT_TRUE(std::filesystem::is_empty(dir));
-  }
+  return "";
+}
+
+// Both failures below hold for root too (CI runs as root, which ignores permission bits):
+// a folder in place of the file fails the rename after the encoder has written the whole
+// temporary file, and a file in place of the parent folder fails the open.
+TEST(ImageIo, FailedRenameLeavesNothingBehind) {
+  const std::string dir = tempPath("rename-fails");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/x.exr/keep");
+  const std::string why = writeError(dir + "/x.exr", ImageF(4, 4, 3));
+  ASSERT_NE(why, "") << "writing over a non-empty folder succeeded";
+  EXPECT_NE(why.find(dir + "/x.exr"), std::string::npos) << why;
+  // Only the folder that was there: no temporary file left beside it, and it is untouched.
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    left.push_back(e.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"x.exr"});
+  EXPECT_TRUE(std::filesystem::is_directory(dir + "/x.exr/keep"));
+}
+
+TEST(ImageIo, FailedOpenNamesTheFile) {
+  const std::string parent = tempPath("not-a-folder");
+  std::filesystem::remove_all(parent);
+  std::ofstream(parent) << "a file, not a folder";
+  const std::string why = writeError(parent + "/x.png", Image8(1, 1, 3));
+  ASSERT_NE(why, "") << "writing below a regular file succeeded";
+  EXPECT_NE(why.find(parent + "/x.png"), std::string::npos) << why;
+  EXPECT_EQ(std::filesystem::file_size(parent), 20u);  // the file in the way is untouched
 }
 
 TEST(ImageIo, TruncatedPngIsAOneLineErrorNamingTheFile) {
