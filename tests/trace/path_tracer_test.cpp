@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "core/builtin_scenes.h"
+#include "tests/trace/reference_bsdf.h"
 #include "tests/trace/trace_test_util.h"
-#include "trace/bsdf.h"
 #include "trace/sampling.h"
 
 namespace photovr {
@@ -50,15 +50,17 @@ Estimate estimate(const Scene& s, const TraceSettings& settings, glm::vec3 p, gl
   return {mean, std::sqrt(var / n)};
 }
 
-// f(wo, wi) cos(theta_i) for the floor's frame (normal +Y).
-double bsdfCos(const BsdfParams& p, glm::vec3 wo, glm::vec3 wi) {
-  const Frame f = Frame::fromZ({0, 1, 0});
-  const glm::vec3 woL = f.toLocal(wo), wiL = f.toLocal(wi);
-  return evalBsdf(p, woL, wiL).r * std::max(0.0f, wiL.z);
+// f(wo, wi) cos(theta_i) on the floor (normal +Y), by the reference BSDF: the thesis's
+// formulas in double, independent of evalBsdf (tests/trace/reference_bsdf.h; the float
+// renderer agrees with it to a few float ulps, bsdf_reference_test.cpp). The cyclic
+// permutation (z, x, y) is a rotation taking +Y to the local +z; the BSDF is isotropic.
+double bsdfCos(const test::RefMaterial& m, const glm::dvec3& wo, const glm::dvec3& wi) {
+  const auto local = [](const glm::dvec3& w) { return glm::dvec3(w.z, w.x, w.y); };
+  return test::refBrdf(m, local(wo), local(wi)).r * std::max(0.0, wi.y);
 }
 
-BsdfParams paramsOf(const Material& m) {
-  return {glm::vec3(m.baseColorFactor), m.metallicFactor, m.roughnessFactor};
+test::RefMaterial materialOf(const Material& m) {
+  return {glm::dvec3(m.baseColorFactor), m.metallicFactor, m.roughnessFactor};
 }
 
 TEST(PathTracer, PointLightOverAPlaneGivesCosOverRSquaredAtEveryAngle) {
@@ -75,11 +77,12 @@ TEST(PathTracer, PointLightOverAPlaneGivesCosOverRSquaredAtEveryAngle) {
     const glm::vec3 p(x, 0, 0);
     const glm::vec3 toLight = l.position - p;
     const double r2 = glm::dot(toLight, toLight);
-    const double expected = bsdfCos(paramsOf(m), wo, glm::normalize(toLight)) * l.intensity / r2;
+    const double expected = bsdfCos(materialOf(m), wo, glm::normalize(toLight)) * l.intensity / r2;
     const Estimate e = estimate(s, settings, p, wo, 8);
     // Deterministic (a delta light, nothing else to hit): float rounding only. The hit is
     // rebuilt from barycentrics of a 200 m triangle, ~200 m x 6e-8 = 1.2e-5 m off, which
-    // moves cos/r^2 by up to ~3 x 1.2e-5 / r relative: 1e-4 covers r >= 1 m.
+    // moves cos/r^2 by up to ~3 x 1.2e-5 / r relative: 1e-4 covers r >= 1 m and the
+    // float BSDF's few ulps (< 1e-6) from the double reference.
     EXPECT_NEAR(e.mean, expected, 1e-4 * expected) << "x = " << x;
   }
 }
@@ -106,7 +109,7 @@ TEST(PathTracer, RectangularAreaLightOverAPlaneMatchesQuadrature) {
       const glm::vec3 q(0.4f - 0.5f + (i + 0.5f) / n, 1.0f, -0.5f + (j + 0.5f) / n);
       const double r2 = glm::dot(q, q);
       const glm::vec3 wi = q / float(std::sqrt(r2));
-      expected += bsdfCos(paramsOf(m), wo, wi) * 3.0 * (wi.y / r2) / (n * n);
+      expected += bsdfCos(materialOf(m), wo, wi) * 3.0 * (wi.y / r2) / (n * n);
     }
   const Estimate e = estimate(s, settings, glm::vec3(0.0f), wo, 20000);
   // 4 standard errors: a false failure once in ~16000 runs (normal tails).
@@ -132,8 +135,8 @@ TEST(PathTracer, WhiteFurnacePlaneReflectsItsDirectionalAlbedo) {
       for (int j = 0; j < np; ++j) {
         const double ct = (i + 0.5) / nt, st = std::sqrt(1 - ct * ct),
                      ph = 2 * M_PI * (j + 0.5) / np;
-        const glm::vec3 wi(float(st * std::cos(ph)), float(ct), float(st * std::sin(ph)));
-        albedo += bsdfCos(paramsOf(m), wo, wi) * (2 * M_PI / (nt * np));  // dw = dcos dphi
+        const glm::dvec3 wi(st * std::cos(ph), ct, st * std::sin(ph));
+        albedo += bsdfCos(materialOf(m), wo, wi) * (2 * M_PI / (nt * np));  // dw = dcos dphi
       }
     const Estimate e = estimate(s, settings, glm::vec3(0.0f), wo, 4000);
     EXPECT_NEAR(e.mean, albedo, 4.0 * e.standardError + 2e-4) << angle << " degrees";
