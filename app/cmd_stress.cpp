@@ -15,8 +15,9 @@ int runStress(const Args& args) {
                  "Renders every numerical stress case (far from the origin, extreme scales,\n"
                  "degenerate triangles, denormals, roughness/metallic 0 and 1, a tiny bright\n"
                  "light, coincident surfaces) in hybrid and pt mode and prints the report:\n"
-                 "NaN/Inf pixels, rejected samples, error against each case's\n"
-                 "well-conditioned twin, hybrid against pt. Exit status 1 if a case fails.\n";
+                 "NaN/Inf pixels, rejected samples, pixels off each case's expected images\n"
+                 "(its well-conditioned twin), pixels where hybrid and pt differ. Exit\n"
+                 "status 1 if a case fails.\n";
     return 0;
   }
   const Options o(args, {"--backend"}, {"--quick"});
