@@ -4,9 +4,7 @@
 // the build folder and their paths are printed; scripts/update_goldens.sh stores new
 // goldens once a person has looked at them. The GoldenSensitivity tests show that every
 // stored image fails when the frame changes a little.
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "core/image_io.h"
+#include "tests/app/cli_util.h"
 #include "tests/golden/golden_compare.h"
 
 namespace photovr::golden {
@@ -151,31 +150,14 @@ GoldenCase headsetPanelCornell() {
 
 // ---- Running photovr ----
 
-struct RunResult {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult runPhotovr(const std::string& args) {
-  const std::string cmd = std::string(PHOTOVR_BINARY) + " " + args + " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  return r;
-}
-
 // Renders into build/tests/golden-out/<dirName>, emptied first; keeps photovr's output
 // there as log.txt (its first line names the GL renderer, for made_with.txt).
-RunResult render(const std::string& args, const std::string& dirName, fs::path& outDir) {
+testing::CommandResult render(const std::string& args, const std::string& dirName,
+                              fs::path& outDir) {
   outDir = buildDir() / "golden-out" / dirName;
   fs::remove_all(outDir);
   fs::create_directories(outDir);
-  RunResult r = runPhotovr(args + " --out '" + outDir.string() + "'");
+  testing::CommandResult r = testing::runPhotovr(args + " --out '" + outDir.string() + "'");
   std::ofstream(outDir / "log.txt") << r.output;
   return r;
 }
@@ -285,7 +267,7 @@ void checkImage(const GoldenCase& c, const GoldenImage& gi, const fs::path& outD
 
 void checkGolden(const GoldenCase& c) {
   fs::path outDir;
-  const RunResult r = render(c.args, c.name, outDir);
+  const testing::CommandResult r = render(c.args, c.name, outDir);
   ASSERT_EQ(r.status, 0) << "photovr " << c.args << "\n" << r.output;
   std::ofstream manifest(outDir / "compared.txt");
   for (const GoldenImage& gi : c.images)
@@ -300,7 +282,7 @@ void checkShowsPerturbation(const GoldenCase& c) {
   ASSERT_NE(at, std::string::npos) << c.name << ": '" << p.from << "' not in its arguments";
   const std::string args = std::string(c.args).replace(at, p.from.size(), p.to);
   fs::path outDir;
-  const RunResult r = render(args, c.name + "-perturbed", outDir);
+  const testing::CommandResult r = render(args, c.name + "-perturbed", outDir);
   ASSERT_EQ(r.status, 0) << "photovr " << args << "\n" << r.output;
   for (const GoldenImage& gi : c.images) {
     const fs::path goldenPath = goldenDir() / storedName(c, gi);

@@ -37,14 +37,11 @@ void addCamera(Scene& s, glm::vec3 from, glm::vec3 at, float yfovDegrees) {
 }
 
 // Thin geometry and sharp silhouettes: 3 mm slats in front of a lit backdrop.
-Scene thinScene() {
+// A back wall and a floor under a point light and a grey sky, seen from 3 m.
+Scene lightRoom() {
   Scene s;
   add(s, makeQuad({-3, 0, -2}, {6, 0, 0}, {0, 3, 0}), material(glm::vec3(0.8f), 0, 0.8f));
   add(s, makeQuad({-3, 0, 2}, {6, 0, 0}, {0, 0, -4}), material(glm::vec3(0.5f), 0, 0.5f));
-  for (int i = 0; i < 12; ++i) {
-    const float x = -1.1f + 0.2f * i;
-    add(s, makeBox({x, 0, -1}, {x + 0.003f, 2, -0.997f}), material({0.9f, 0.3f, 0.1f}, 1, 0.3f));
-  }
   Light l;
   l.position = {1, 2.5f, 1};
   l.intensity = 6.0f;
@@ -52,6 +49,15 @@ Scene thinScene() {
   s.environment.type = Environment::Type::Constant;
   s.environment.constant = glm::vec3(0.3f);
   addCamera(s, {0, 1, 2}, {0, 1, -1}, 60);
+  return s;
+}
+
+Scene thinScene() {
+  Scene s = lightRoom();
+  for (int i = 0; i < 12; ++i) {
+    const float x = -1.1f + 0.2f * i;
+    add(s, makeBox({x, 0, -1}, {x + 0.003f, 2, -0.997f}), material({0.9f, 0.3f, 0.1f}, 1, 0.3f));
+  }
   return s;
 }
 
@@ -83,21 +89,12 @@ constexpr glm::vec2 kPanelMin{-0.85f, 0.55f}, kPanelMax{-0.1f, 1.45f};
 constexpr float kPanelZ = -1.0f;
 
 Scene lampScene() {
-  Scene s;
-  add(s, makeQuad({-3, 0, -2}, {6, 0, 0}, {0, 3, 0}), material(glm::vec3(0.8f), 0, 0.8f));
-  add(s, makeQuad({-3, 0, 2}, {6, 0, 0}, {0, 0, -4}), material(glm::vec3(0.5f), 0, 0.5f));
+  Scene s = lightRoom();
   // Dark, so its pixels are mostly emission, but not black: they carry noise of their own.
   Material panel = material(glm::vec3(0.05f), 0, 0.5f);
   panel.emissiveFactor = glm::vec3(kPanelEmission);
   const glm::vec2 size = kPanelMax - kPanelMin;  // edges +x, +y: the front faces +z
   add(s, makeQuad({kPanelMin, kPanelZ}, {size.x, 0, 0}, {0, size.y, 0}), panel);
-  Light l;
-  l.position = {1, 2.5f, 1};
-  l.intensity = 6.0f;
-  s.lights.push_back(l);
-  s.environment.type = Environment::Type::Constant;
-  s.environment.constant = glm::vec3(0.3f);
-  addCamera(s, {0, 1, 2}, {0, 1, -1}, 60);
   return s;
 }
 
