@@ -56,7 +56,7 @@ std::array<TraceLimit, 2> measureTraceLimits(const BenchScene& s, int w, int h,
                                              gl::Context& context) {
   HybridRenderer renderer(
       *s.scene, w, h, context.hasExtension("GL_ARB_shader_viewport_layer_array"), TraceSettings{});
-  const auto cams = eyeCameras(s.view, w, h, 0);
+  const auto cams = eyeCameras(s.view, w, h, 0, SamplerKind::Sobol);
   std::array<TraceLimit, 2> out{TraceLimit{s.scene->name, "hybrid"},
                                 TraceLimit{s.scene->name, "pt"}};
   // Warm-up: shader compilation, and the first touch of the storage both modes reuse.
@@ -82,7 +82,7 @@ GlLimit measureGlLimits(int w, int h, gl::Context& context) {
   const gl::SceneGpu gpu(empty);
   gl::GBufferPass pass(w, h, context.hasExtension("GL_ARB_shader_viewport_layer_array"),
                        gl::EyeRouting::Layered);
-  const auto cams = eyeCameras(View{}, w, h, 0);
+  const auto cams = eyeCameras(View{}, w, h, 0, SamplerKind::Sobol);
   std::array<glm::mat4, 2> vp;
   for (int e = 0; e < 2; ++e) vp[e] = cams[e].unjitteredProjection() * cams[e].view();
   GlLimit g{w, h};

@@ -78,7 +78,7 @@ struct HybridRun {
   Eyes render(uint32_t f, FrameRecord& r) {
     HybridFrameTimes t;
     Eyes out = renderer.render(
-        eyeCameras(view, c.width, c.height, f), 2, f, &t,
+        eyeCameras(view, c.width, c.height, f, SamplerKind::Sobol), 2, f, &t,
         {maps[0].empty() ? nullptr : &maps[0], maps[1].empty() ? nullptr : &maps[1]});
     r.gbufferMs = t.gbufferMs, r.readbackMs = t.readbackMs;
     r.rebuildMs = t.rebuildMs, r.traceMs = t.traceMs, r.rays = t.rays;
@@ -119,7 +119,7 @@ struct PathTracedRun {
         view(s.view) {}
 
   std::array<std::vector<glm::vec3>, 2> frame(uint32_t f, FrameRecord& r) {
-    const auto cams = eyeCameras(view, c.width, c.height, f);
+    const auto cams = eyeCameras(view, c.width, c.height, f, SamplerKind::Sobol);
     const auto t0 = Clock::now();
     Eyes& out = last;
     for (int e = 0; e < 2; ++e)

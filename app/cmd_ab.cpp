@@ -85,7 +85,7 @@ struct PipelineTimes {
 
 PipelineTimes measurePipeline(HybridRenderer& renderer, const RenderRequest& r, int eyeCount) {
   PipelineTimes p;
-  auto cameras = [&](uint32_t f) { return eyeCameras(r.view, r.width, r.height, f); };
+  auto cameras = [&](uint32_t f) { return eyeCameras(r.view, r.width, r.height, f, r.sampler); };
   for (int pipelined = 0; pipelined < 2; ++pipelined) {
     HybridFrameTimes t;
     const auto t0 = Clock::now();
@@ -109,10 +109,10 @@ ModeResult runHybrid(HybridRenderer& renderer, const RenderRequest& r, int eyeCo
   ModeResult m;
   m.eyes.resize(eyeCount);
   // Warm-up: shader compilation, and the first touch of the storage every frame reuses.
-  renderer.recycle(renderer.render(eyeCameras(r.view, r.width, r.height, 0), eyeCount, 0, nullptr));
+  renderer.recycle(renderer.render(eyeCameras(r.view, r.width, r.height, 0, r.sampler), eyeCount, 0, nullptr));
   for (int f = 0; f < r.frames; ++f) {
     HybridFrameTimes t;
-    auto out = renderer.render(eyeCameras(r.view, r.width, r.height, uint32_t(f)), eyeCount,
+    auto out = renderer.render(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler), eyeCount,
                                uint32_t(f), &t);
     for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], out[e], f);
     renderer.recycle(std::move(out));
@@ -132,7 +132,7 @@ ModeResult runPathTraced(const TraceContext& ctx, const RenderRequest& r, int ey
   std::array<EyeImage, 2> last;  // traced into, touched once untimed as the hybrid's warm-up
   for (int e = 0; e < eyeCount; ++e) allocateEyeImage(last[e], r.width, r.height);
   for (int f = 0; f < r.frames; ++f) {
-    const auto eyes = eyeCameras(r.view, r.width, r.height, uint32_t(f));
+    const auto eyes = eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler);
     for (int e = 0; e < eyeCount; ++e) {
       m.primaryMs += timePrimaryRays(ctx.scene, ctx.embree, eyes[e]).milliseconds;
       const auto t0 = Clock::now();

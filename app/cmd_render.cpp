@@ -26,10 +26,14 @@ const char* const kRenderHelp =
     "  --env FILE             equirectangular .hdr/.exr environment\n"
     "  --width W --height H   per-eye size (default 960x1080, the DK2's eye; 1..8192)\n"
     "  --mode hybrid|pt|gbuffer  what to render (default hybrid)\n"
-    "  --spp N                samples per pixel per frame (1..65536, default 1)\n"
+    "  --spp N                samples per pixel per frame (1..65536, default 1); pt: each at\n"
+    "                         its own place in the pixel; hybrid: N paths continued from\n"
+    "                         the frame's one rasterized hit (antialias with --frames)\n"
     "  --bounces N            indirect bounces after the first hit (0..64, default 8)\n"
     "  --frames F             frames accumulated with sub-pixel jitter (1..65536, default 1)\n"
     "  --seed S               random seed (default 0)\n"
+    "  --sampler S            sobol (default: Owen-scrambled Sobol, one sequence over the\n"
+    "                         frames and samples of a pixel) or random (independent numbers)\n"
     "  --exposure E           exposure multiplier for color.png (default 1)\n"
     "  --sampling S           hybrid: uniform (default); hidden-area (pixels the DK2 lens never\n"
     "                         shows are not traced); lens-matched (--spp is the maximum,\n"
@@ -61,7 +65,8 @@ RenderRequest parseRenderRequest(const Args& args) {
   std::set<std::string> valued = {"--scene",   "--env",      "--width",   "--height",
                                   "--backend", "--out",      "--mode",    "--spp",
                                   "--bounces", "--frames",   "--seed",    "--exposure",
-                                  "--denoise", "--sampling", "--no-skip", "--converge"};
+                                  "--denoise", "--sampling", "--no-skip", "--converge",
+                                  "--sampler"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())
@@ -77,6 +82,8 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.bounces = o.integer("--bounces", 8, 0, 64);
   r.frames = o.integer("--frames", 1, 1, 65536);
   r.seed = uint32_t(o.integer("--seed", 0, 0, 2147483647));
+  r.sampler = o.choice("--sampler", "sobol", {"sobol", "random"}) == "random" ? SamplerKind::Random
+                                                                              : SamplerKind::Sobol;
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
   r.sampling =

@@ -81,6 +81,9 @@ std::string referenceKey(const ReferenceSpec& s) {
   h.value(hashScene(*s.scene)).value(s.view.head.position).value(s.view.head.orientation);
   h.value(s.view.yfov).value(s.view.stereo).value(s.width).value(s.height).value(s.bounces);
   h.value(kReferenceSeed).value(kReferenceSppPerFrame);
+  // How the samples were drawn: Sobol, each sample at its own place in the pixel (issue 18).
+  // Caches made before say nothing, so they are not resumed with another sequence.
+  h.text("sampler=sobol");
   return hexDigest(h.digest());
 }
 
@@ -110,7 +113,7 @@ Reference loadOrRenderReference(const ReferenceSpec& spec, int spp) {
   const auto t0 = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   for (int f = frames; f < targetFrames; ++f) {
-    const auto eyes = eyeCameras(spec.view, spec.width, spec.height, uint32_t(f));
+    const auto eyes = eyeCameras(spec.view, spec.width, spec.height, uint32_t(f), ctx.settings.sampler);
     for (int e = 0; e < eyeCount; ++e) {
       const EyeImage img = renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(f));
       rays += img.rays;

@@ -15,7 +15,7 @@ namespace photovr::app {
 
 int renderGBufferMode(const RenderRequest& r) {
   auto context = createRenderContext(r.backend);
-  const auto eyes = eyeCameras(r.view, r.width, r.height, 0);
+  const auto eyes = eyeCameras(r.view, r.width, r.height, 0, r.sampler);
   gl::SceneGpu gpu(r.scene);
   gl::GBufferPass pass(r.width, r.height,
                        context->hasExtension("GL_ARB_shader_viewport_layer_array"),

@@ -19,6 +19,7 @@ struct RenderRequest {
   int width = 0, height = 0;
   int spp = 1, bounces = 8, frames = 1;
   uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   float exposure = 1.0f;
   std::string denoise = "off";       // off | temporal | full (hybrid)
   std::string sampling = "uniform";  // uniform | hidden-area | lens-matched | thesis-zones

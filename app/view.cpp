@@ -80,8 +80,9 @@ View resolveView(const Scene& scene, const Options& o) {
   return v;
 }
 
-std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame) {
-  const glm::vec2 jitter = haltonJitter(frame);
+std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame,
+                                    SamplerKind sampler) {
+  const glm::vec2 jitter = samplePosition(sampler, frame);
   if (view.stereo) {
     StereoRig rig;
     rig.head = view.head;

@@ -23,7 +23,8 @@ struct View {
 View resolveView(const Scene& scene, const Options& options);
 
 // The two eye cameras of frame 'frame' (Halton jitter). Mono gives the same camera twice.
-std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame);
+std::array<EyeCamera, 2> eyeCameras(const View& view, int width, int height, uint32_t frame,
+                                    SamplerKind sampler);
 
 // The options every rendering command accepts for the camera, with their help text: the
 // head's placement (all commands) and the eyes (not `view`, whose eyes are the headset's).

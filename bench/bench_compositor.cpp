@@ -255,7 +255,7 @@ std::vector<LensRow> lensStudy(const Config& c, bool layered) {
   TraceSettings settings;
   settings.samplesPerPixel = c.referenceSpp;
   HybridRenderer renderer(scene, c.lensW, c.lensH, layered, settings);
-  const auto eyes = sceneEyes(scene, c.lensW, c.lensH, haltonJitter(0));
+  const auto eyes = sceneEyes(scene, c.lensW, c.lensH, samplePosition(SamplerKind::Sobol, 0));
   // Reference: every round the same jittered pixel positions (frame 0), new seeds.
   std::array<std::vector<glm::vec3>, 2> ref;
   for (int round = 0; round < c.referenceRounds; ++round) {

@@ -107,7 +107,7 @@ void benchPasses(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
     HybridRenderer r(s.scene, size.x, size.y,
                      ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), TraceSettings{});
     const std::array<EyeImage, 2> images =
-        r.render(app::eyeCameras(s.view, size.x, size.y, 0), 2, 0, nullptr);
+        r.render(app::eyeCameras(s.view, size.x, size.y, 0, SamplerKind::Sobol), 2, 0, nullptr);
     const std::array<DenoiseInput, 2> in = inputsOf(images);
     gl::Denoiser dn(size.x, size.y);
     dn.setTiming(true);
@@ -150,7 +150,8 @@ EqualTime equalTime(const gl::Context& ctx, const Setup& s, const app::Reference
   dn.setTiming(true);
   for (uint32_t f = 0; f < 8; ++f) {
     HybridFrameTimes t;
-    const std::array<EyeImage, 2> images = r.render(app::eyeCameras(s.view, w, h, f), 2, f, &t);
+    const std::array<EyeImage, 2> images =
+        r.render(app::eyeCameras(s.view, w, h, f, SamplerKind::Sobol), 2, f, &t);
     const std::array<DenoiseInput, 2> in = inputsOf(images);
     denoise(dn, r, in, gl::DenoiseMode::Full, f == 0);
     // Frame 0 pays the shader JIT: not timed.
@@ -168,9 +169,10 @@ EqualTime equalTime(const gl::Context& ctx, const Setup& s, const app::Reference
   TraceSettings many;
   many.samplesPerPixel = e.spp;
   HybridRenderer rm(s.scene, w, h, layers, many);
-  rm.render(app::eyeCameras(s.view, w, h, 0), 2, 0, nullptr);  // warm-up
+  rm.render(app::eyeCameras(s.view, w, h, 0, SamplerKind::Sobol), 2, 0, nullptr);  // warm-up
   HybridFrameTimes t;
-  const std::array<EyeImage, 2> images = rm.render(app::eyeCameras(s.view, w, h, 8), 2, 8, &t);
+  const std::array<EyeImage, 2> images =
+      rm.render(app::eyeCameras(s.view, w, h, 8, SamplerKind::Sobol), 2, 8, &t);
   e.sppFrameMs = t.totalMs();
   e.sppRelMse = relMseBothEyes(images, ref);
   return e;

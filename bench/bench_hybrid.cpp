@@ -40,7 +40,8 @@ struct Row {
 std::array<EyeCamera, 2> eyesOf(const Scene& s, int w, int h, uint32_t f) {
   StereoRig rig;
   rig.head = poseOf(s.cameras.at(0));
-  return {rig.eye(Eye::Left, w, h, haltonJitter(f)), rig.eye(Eye::Right, w, h, haltonJitter(f))};
+  return {rig.eye(Eye::Left, w, h, samplePosition(SamplerKind::Sobol, f)),
+          rig.eye(Eye::Right, w, h, samplePosition(SamplerKind::Sobol, f))};
 }
 
 // Replays in parallel over chunks on all threads, as the tracer traced them.

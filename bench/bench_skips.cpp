@@ -64,8 +64,8 @@ double cpuMs() {
 std::array<EyeCamera, 2> eyesOf(const Scene& scene, int w, int h, uint32_t frame) {
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
-  return {rig.eye(Eye::Left, w, h, haltonJitter(frame)),
-          rig.eye(Eye::Right, w, h, haltonJitter(frame))};
+  return {rig.eye(Eye::Left, w, h, samplePosition(SamplerKind::Sobol, frame)),
+          rig.eye(Eye::Right, w, h, samplePosition(SamplerKind::Sobol, frame))};
 }
 
 // One run of o.frames stereo frames: lowers t to its CPU time per frame if it was faster.

@@ -142,7 +142,8 @@ Row measure(const std::string& name, const Scene& scene, int threads, const Conf
   const TraceContext ctx{scene, embree, lights, settings};
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
-  const EyeCamera cam = rig.eye(Eye::Left, opt.width, opt.height, haltonJitter(0));
+  const EyeCamera cam =
+      rig.eye(Eye::Left, opt.width, opt.height, samplePosition(SamplerKind::Sobol, 0));
 
   RayRecorder recorder;  // untimed render: records the rays and warms the caches
   embree.setRecorder(opt.renderOnly ? nullptr : &recorder);

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/sobol.h"
+
 namespace photovr {
 
 glm::mat4 Pose::toWorld() const {
@@ -119,6 +121,20 @@ float radicalInverse(uint32_t base, uint32_t index) {
 glm::vec2 haltonJitter(uint32_t frameIndex) {
   // Index + 1 skips the (0, 0) point so frame 0 is not biased to the pixel corner.
   return glm::vec2(radicalInverse(2, frameIndex + 1), radicalInverse(3, frameIndex + 1)) - 0.5f;
+}
+
+glm::vec2 samplePosition(SamplerKind kind, uint32_t index) {
+  if (kind == SamplerKind::Random) return haltonJitter(index);
+  // Any fixed seed: the positions are a function of the index alone, as Halton's were, so
+  // that renderers with different --seed still sample the same pixel positions.
+  constexpr uint32_t kPixelSeed = 0x9e3779b9u;
+  const glm::uvec2 p = scrambledSobol2D(index, kPixelSeed);
+  // 24-bit fractions: exact in float, largest 1 - 2^-24, so the offset stays below 0.5.
+  return glm::vec2(float(p.x >> 8), float(p.y >> 8)) * 0x1p-24f - 0.5f;
+}
+
+const char* samplerName(SamplerKind kind) {
+  return kind == SamplerKind::Random ? "random" : "sobol";
 }
 
 EyeCamera StereoRig::eye(Eye e, int width, int height, glm::vec2 jitter) const {

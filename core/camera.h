@@ -91,6 +91,18 @@ glm::mat4 reversedZProjection(const FovTangents& fov, float znear, float zfar);
 
 // Halton (2, 3) point of a frame index, centred on the pixel: each coordinate in [-0.5, 0.5).
 glm::vec2 haltonJitter(uint32_t frameIndex);
+
+// Which numbers the renderers draw (--sampler): Owen-scrambled Sobol (core/sobol.h, the
+// default) or the independent hashed numbers and Halton jitter of before, kept for A/B.
+enum class SamplerKind : uint8_t { Random, Sobol };
+
+// Where sample 'index' of a pixel sits, as an offset from the pixel centre in [-0.5, 0.5)^2.
+// The index spans frames (frame f, sample s of n per frame: f * n + s), and one frame's
+// G-buffer jitter is the position of index f. Sobol: the scrambled sequence's dimensions 0-1
+// under one fixed scramble for every pixel, since the rasterizer jitters by shifting the
+// whole projection; Random: haltonJitter(index).
+glm::vec2 samplePosition(SamplerKind kind, uint32_t index);
+const char* samplerName(SamplerKind kind);  // "random", "sobol"
 float radicalInverse(uint32_t base, uint32_t index);
 
 // Eye placement: each eye sits ipd / 2 along the head's local X; orientations equal the

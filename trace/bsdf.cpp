@@ -147,8 +147,24 @@ float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
   return evalBsdfAndPdf(prepareBsdf(p, wo), wi).pdf;
 }
 
-BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u, float uLobe) {
-  return sampleBsdf(prepareBsdf(p, wo), u, uLobe);
+namespace {
+
+// The lobe is chosen by u.x < p, and u.x is then stretched back over [0, 1) within the
+// chosen lobe's share (as pbrt-v4's SampleDiscrete returns uRemapped): the samples that
+// pick a lobe keep the 2D stratification of the sampler's (0, 2)-net in that lobe, where a
+// separate lobe number would hand each lobe a random subset of the net's points (issue 18:
+// at 256 spp, 8 seeds, bench_sampler's relMSE ratio to the random sampler went from 3.26x
+// to 3.39x on textured-gltf, 1.14x to 1.26x on metal-gltf). Capped below 1, as the
+// samplers promise u < 1.
+float remapLobeNumber(float ux, float p, bool firstLobe) {
+  const float stretched = firstLobe ? ux / p : (ux - p) / (1.0f - p);
+  return std::min(stretched, 0x1.fffffep-1f);
+}
+
+}  // namespace
+
+BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u) {
+  return sampleBsdf(prepareBsdf(p, wo), u);
 }
 
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
@@ -174,10 +190,11 @@ BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
   return {{diffuse(v, wi), specular(v, wi, h, d)}, pdf(v, wi, d)};
 }
 
-BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u, float uLobe) {
+BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
-  s.specularLobe = uLobe < v.specularProbability;
+  s.specularLobe = u.x < v.specularProbability;
+  u.x = remapLobeNumber(u.x, v.specularProbability, s.specularLobe);
   if (s.specularLobe) {
     const glm::vec3 h = sampleGgxVndf(v.wo, v.alpha, u);
     s.wi = 2.0f * glm::dot(v.wo, h) * h - v.wo;

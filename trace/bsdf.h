@@ -131,10 +131,11 @@ struct BsdfSample {
   bool valid() const { return pdf > 0.0f; }
 };
 
-// Picks a lobe with uLobe against specularProbability(), then samples it with u: GGX
-// visible normals reflected about h, or the cosine-weighted hemisphere. Returns an
-// invalid sample (pdf 0, weight 0) when wo.z <= 0 or the sampled wi is below the surface.
-BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u, float uLobe);
+// Picks a lobe with u.x against specularProbability(), stretches u.x back over [0, 1)
+// within the lobe's share, then samples the lobe with u: GGX visible normals reflected
+// about h, or the cosine-weighted hemisphere. Returns an invalid sample (pdf 0, weight 0)
+// when wo.z <= 0 or the sampled wi is below the surface.
+BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u);
 
 // --- One path vertex. ------------------------------------------------------------------
 
@@ -162,6 +163,6 @@ struct BsdfEval {
   float pdf = 0.0f;
 };
 BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi);
-BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u, float uLobe);
+BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u);
 
 }  // namespace photovr

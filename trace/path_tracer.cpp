@@ -95,9 +95,9 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
   glm::vec3 beta(1.0f), share(1.0f);  // share: diffuse fraction of the first bounce
   bool albedoSet = false;
   uint64_t rays = 0;
-  const uint32_t pathKey = Sampler::pathKey(counters);
+  const PathSampler path = PathSampler::make(counters);
   for (int depth = 0;; ++depth) {
-    Sampler sampler = Sampler::forBounce(pathKey, uint32_t(depth));
+    Sampler sampler = path.bounce(uint32_t(depth));
     if (!albedoSet && (v.hit.bsdf.roughness >= kMirrorRoughness || v.hit.bsdf.metallic < 1.0f)) {
       result.albedo = v.hit.bsdf.baseColor;
       albedoSet = true;
@@ -111,7 +111,7 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
     } else {
       addSplit(result, beta * direct.total(), share);
     }
-    const BsdfSample bs = sampleBsdf(bsdf, sampler.next2(), sampler.next());
+    const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
     if (!bs.valid()) break;
     const glm::vec3 wi = frame.toWorld(bs.wi);
     if (glm::dot(wi, v.hit.geometricNormal) <= 0.0f) break;  // shading normal leaked below

@@ -22,6 +22,7 @@ struct TraceSettings {
   int maxBounces = 8;            // indirect bounces after the first hit (--bounces)
   int russianRouletteDepth = 5;  // thesis Algorithm 2: roulette from depth 5
   uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
                     // their EmbreeScene and LightSet with the same skips
 };
@@ -64,10 +65,12 @@ struct EyeImage {
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 
-// Pure path tracing of one eye: every sample of a pixel starts at that pixel's jittered
-// position for this frame (camera.jitter), as the rasterizer's does. 'reuse': an earlier
-// frame's image, done with, to trace into instead of fresh memory (whose first touch costs
-// ~300 ms per 960x1080 image here, docs/ARCHITECTURE.md, "Memory reuse"), as the hybrid's.
+// Pure path tracing of one eye. Sample s of the frame sits at the sampler's pixel position
+// for index frame * spp + s (core/camera.h, samplePosition), not at camera.jitter: at one
+// sample per frame the two agree when the camera was made with samplePosition(kind, frame),
+// as the rasterizer's is. 'reuse': an earlier frame's image, done with, to trace into
+// instead of fresh memory (whose first touch costs ~300 ms per 960x1080 image here,
+// docs/ARCHITECTURE.md, "Memory reuse"), as the hybrid's.
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& camera, uint32_t eye,
                           uint32_t frame, EyeImage reuse = {});
 

@@ -4,36 +4,45 @@
 
 namespace photovr {
 
+void addPath(PixelEstimate& e, const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
+             const SampleCounters& counters) {
+  const PathResult r = continuePath(ctx, hit, -dir, counters);
+  e.diffuse += r.diffuse;
+  e.specular += r.specular;
+  e.albedo += r.albedo;
+  e.emitted += hit.emission;
+  e.diffuseAlbedo += glm::max(diffuseAlbedo(hit.bsdf), glm::vec3(kMinDemodulationAlbedo));
+  e.specularAlbedo += glm::max(specularAlbedo(hit.bsdf, glm::dot(hit.shadingNormal, -dir)),
+                               glm::vec3(kMinDemodulationAlbedo));
+  e.rays += r.rays;
+  e.rejected += r.rejected;
+  ++e.samples;
+}
+
 PixelEstimate estimatePixel(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
                             SampleCounters counters, uint32_t spp) {
   PixelEstimate e;
   for (uint32_t s = 0; s < spp; ++s) {
     counters.sample = s;
-    const PathResult r = continuePath(ctx, hit, -dir, counters);
-    e.diffuse += r.diffuse;
-    e.specular += r.specular;
-    e.albedo += r.albedo;
-    e.rays += r.rays;
-    e.rejected += r.rejected;
+    addPath(e, ctx, hit, dir, counters);
   }
-  e.samples = spp;
   return e;
 }
 
-void storePixel(EyeImage& img, size_t i, const SurfaceHit& hit, const glm::vec3& dir,
-                const PixelEstimate& e) {
+void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
   img.samples[i] = e.samples;
+  const uint32_t taken = e.samples + e.misses;
+  if (taken == 0) return;
+  const float inv = 1.0f / float(taken);
+  img.color[i] = (e.diffuse + e.specular + e.emitted) * inv;
   if (e.samples == 0) return;
-  const float inv = 1.0f / float(e.samples);
-  const glm::vec3 dAlb = glm::max(diffuseAlbedo(hit.bsdf), glm::vec3(kMinDemodulationAlbedo));
-  const glm::vec3 sAlb = glm::max(specularAlbedo(hit.bsdf, glm::dot(hit.shadingNormal, -dir)),
-                                  glm::vec3(kMinDemodulationAlbedo));
-  img.color[i] = (e.diffuse + e.specular) * inv + hit.emission;
+  const float invHits = 1.0f / float(e.samples);
+  const glm::vec3 dAlb = e.diffuseAlbedo * invHits, sAlb = e.specularAlbedo * invHits;
   img.diffuse[i] = e.diffuse * inv / dAlb;
   img.specular[i] = e.specular * inv / sAlb;
   img.diffuseAlbedo[i] = dAlb;
   img.specularAlbedo[i] = sAlb;
-  img.albedo[i] = e.albedo * inv;
+  img.albedo[i] = e.albedo * invHits;
 }
 
 void allocateEyeImage(EyeImage& img, int w, int h) {

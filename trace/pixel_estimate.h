@@ -1,5 +1,5 @@
-// One pixel's samples from a primary hit, and how they are stored: shared by the pure path
-// tracer and the hybrid so both produce the same outputs from the same estimate.
+// One pixel's samples and how they are stored: shared by the pure path tracer and the
+// hybrid so both produce the same outputs from the same estimate.
 #pragma once
 
 #include <cstdint>
@@ -8,25 +8,33 @@
 
 namespace photovr {
 
+// Sums over a pixel's samples. A sample either continues a path from its primary hit or
+// (pure path tracing) missed every surface and saw the environment.
 struct PixelEstimate {
-  glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};  // sums over the samples
-  uint32_t samples = 0;
+  glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
+  glm::vec3 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
+  glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
+  uint32_t samples = 0;  // paths continued from a hit
+  uint32_t misses = 0;   // primary rays that left the scene
   uint64_t rays = 0, rejected = 0;
 };
-
-// 'spp' paths continued from 'hit', seen along the primary direction 'dir'.
-PixelEstimate estimatePixel(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-                            SampleCounters counters, uint32_t spp);
 
 // Albedos are clamped to this before demodulating, and the same clamped value is stored,
 // so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
 constexpr float kMinDemodulationAlbedo = 1e-3f;
 
-// Writes colour (mean + the hit's emission), the demodulated lobes and their albedos, the
-// albedo AOV and the sample count at pixel i. Does nothing to the colour when no samples
-// were taken (a hidden-area pixel).
-void storePixel(EyeImage& image, size_t i, const SurfaceHit& hit, const glm::vec3& dir,
-                const PixelEstimate& estimate);
+// One path continued from 'hit', seen along the primary direction 'dir'.
+void addPath(PixelEstimate& e, const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
+             const SampleCounters& counters);
+// The hybrid's pixel: 'spp' paths continued from the frame's one primary hit.
+PixelEstimate estimatePixel(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
+                            SampleCounters counters, uint32_t spp);
+
+// Writes colour (the mean over every sample, emission and environment included), the
+// demodulated lobes and their albedos (means over the samples that hit), the albedo AOV and
+// the count of paths at pixel i. A pixel with no path keeps samples 0 (a hidden-area pixel,
+// or pure path tracing's background, whose colour is then the environment it saw).
+void storePixel(EyeImage& image, size_t i, const PixelEstimate& estimate);
 
 // Sizes every buffer of the image (zeros).
 void allocateEyeImage(EyeImage& image, int width, int height);

@@ -18,25 +18,40 @@ struct Counts {
   uint64_t rays = 0, rejected = 0;
 };
 
+// Sample s of frame f sits at the sampler's position for index f * spp + s
+// (samplePosition): with one sample per frame that is the frame's jitter, where the
+// G-buffer samples too; with more, each sample has its own place in the pixel, so one
+// frame of N samples antialiases as N frames of one do. Depth and normal are the first
+// hit's (the G-buffer keeps one surface per pixel too).
 void tracePixel(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint32_t frame, int x,
                 int y, EyeImage& img, Counts& counts) {
   const size_t i = img.index(x, y);
-  const glm::vec3 dir = cam.pixelRay(x, y);
-  const TraceHit th =
-      ctx.embree.intersect(cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
-  ++counts.rays;
-  if (!th.hit) {
-    img.color[i] = ctx.lights.environmentRadiance(dir);
-    return;
-  }
-  const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
+  const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
-  img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
-  img.normal[i] = hit.shadingNormal;
-  const SampleCounters counters{uint32_t(i), eye, frame, 0, 0, ctx.settings.seed};
-  const PixelEstimate e =
-      estimatePixel(ctx, hit, dir, counters, uint32_t(ctx.settings.samplesPerPixel));
-  storePixel(img, i, hit, dir, e);
+  SampleCounters counters{uint32_t(i), eye, frame, 0, 0, ctx.settings.seed, spp,
+                          ctx.settings.sampler};
+  PixelEstimate e;
+  for (uint32_t s = 0; s < spp; ++s) {
+    counters.sample = s;
+    const glm::vec2 p = glm::vec2(x + 0.5f, y + 0.5f) +
+                        samplePosition(ctx.settings.sampler, counters.sampleIndex());
+    const glm::vec3 dir = cam.rayDirection(p.x, p.y);
+    const TraceHit th =
+        ctx.embree.intersect(cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
+    ++e.rays;
+    if (!th.hit) {
+      e.emitted += ctx.lights.environmentRadiance(dir);
+      ++e.misses;
+      continue;
+    }
+    const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
+    if (e.samples == 0) {
+      img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
+      img.normal[i] = hit.shadingNormal;
+    }
+    addPath(e, ctx, hit, dir, counters);
+  }
+  storePixel(img, i, e);
   counts.rays += e.rays;
   counts.rejected += e.rejected;
 }

@@ -7,6 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include "core/camera.h"
+#include "core/sobol.h"
+
 namespace photovr {
 
 // PCG-RXS-M-XS 32-bit output permutation applied to one LCG step, as "pcg" in Jarzynski &
@@ -39,36 +42,69 @@ struct SampleCounters {
   uint32_t sample = 0;  // sample index within the pixel and frame
   uint32_t bounce = 0;
   uint32_t seed = 0;
+  uint32_t samplesPerFrame = 1;  // n: the index spanning frames is frame * n + sample
+  SamplerKind kind = SamplerKind::Random;
+  uint32_t sampleIndex() const { return frame * samplesPerFrame + sample; }
 };
 
-// Numbers for one bounce: dimension `dim` of the stream keyed by the counters. Cheap to
+// Numbers for one bounce: the `dim`-th draw of the stream keyed by the counters. Cheap to
 // copy; a path makes a new one per bounce so that bounce k's numbers do not depend on how
 // many bounce k-1 consumed.
+//
+// Random: draw d is hash(key, d), independent of every other number. Sobol: draw d is the
+// sample index's point of a shuffled, Owen-scrambled Sobol sequence (core/sobol.h) whose
+// seed is hash(key, d), the key naming (seed, pixel, eye, bounce) but not the frame or the
+// sample: so over the frames and samples of one pixel each draw runs through one
+// stratified sequence, and draws of different pixels, eyes, bounces or --seed are
+// independent scrambles. A 2D draw (next2) is one Sobol pair (dimensions 0 and 1, a (0, 2)
+// net for every 2^m samples), under Random two independent numbers.
 struct Sampler {
   uint32_t key = 0;
   uint32_t dim = 0;
   // pcgHash(key), the inner hash of every hashCombine(key, dim) this sampler draws: hashed
   // once here instead of once per number (the hashing was ~12 % of continuePath's own time).
   uint32_t hashedKey = pcgHash(0);
+  uint32_t index = 0;  // Sobol: the sample index spanning frames
+  SamplerKind kind = SamplerKind::Random;
 
-  // The counters every bounce of one path shares, hashed once per path (pathKey) and
-  // finished per bounce (forBounce): make(c) == forBounce(pathKey(c), c.bounce).
-  static uint32_t pathKey(const SampleCounters& c) {
-    uint32_t h = hashCombine(c.seed, c.pixel);
-    h = hashCombine(h, c.eye);
-    h = hashCombine(h, c.frame);
-    return hashCombine(h, c.sample);
+  static Sampler make(const SampleCounters& c);
+  float next() {
+    const uint32_t bits = pcgHash(dim++ + hashedKey);
+    if (kind == SamplerKind::Random) return toUnitFloat(bits);
+    return toUnitFloat(shuffledSobol1D(index, bits));
   }
-  static Sampler forBounce(uint32_t pathKey, uint32_t bounce) {
-    const uint32_t key = hashCombine(pathKey, bounce);
-    return {key, 0, pcgHash(key)};
-  }
-  static Sampler make(const SampleCounters& c) { return forBounce(pathKey(c), c.bounce); }
-  float next() { return toUnitFloat(pcgHash(dim++ + hashedKey)); }
   glm::vec2 next2() {
-    const float a = next();
-    return {a, next()};
+    if (kind == SamplerKind::Random) {
+      const float a = next();
+      return {a, next()};
+    }
+    const glm::uvec2 p = shuffledSobol2D(index, pcgHash(dim++ + hashedKey));
+    return {toUnitFloat(p.x), toUnitFloat(p.y)};
   }
 };
+
+// What every bounce of one path shares, hashed once per path: make(c).bounce(b) ==
+// Sampler::make(c with bounce b).
+struct PathSampler {
+  uint32_t key = 0;
+  uint32_t index = 0;
+  SamplerKind kind = SamplerKind::Random;
+
+  static PathSampler make(const SampleCounters& c) {
+    uint32_t h = hashCombine(c.seed, c.pixel);
+    h = hashCombine(h, c.eye);
+    if (c.kind == SamplerKind::Sobol) return {h, c.sampleIndex(), c.kind};
+    h = hashCombine(h, c.frame);
+    return {hashCombine(h, c.sample), 0, c.kind};
+  }
+  Sampler bounce(uint32_t b) const {
+    const uint32_t k = hashCombine(key, b);
+    return {k, 0, pcgHash(k), index, kind};
+  }
+};
+
+inline Sampler Sampler::make(const SampleCounters& c) {
+  return PathSampler::make(c).bounce(c.bounce);
+}
 
 }  // namespace photovr

@@ -14,8 +14,9 @@ std::array<gl::GBufferImage, 2> renderWith(gl::Context& ctx, const Scene& scene)
   ctx.makeCurrent();
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
-  const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, 48, 54, haltonJitter(3)),
-                                         rig.eye(Eye::Right, 48, 54, haltonJitter(3))};
+  const std::array<EyeCamera, 2> eyes = {
+      rig.eye(Eye::Left, 48, 54, samplePosition(SamplerKind::Sobol, 3)),
+      rig.eye(Eye::Right, 48, 54, samplePosition(SamplerKind::Sobol, 3))};
   gl::SceneGpu gpu(scene);
   gl::GBufferPass pass(48, 54, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"),
                        gl::EyeRouting::Layered);

@@ -25,7 +25,7 @@ constexpr int kW = 96, kH = 108;  // as denoise_quality_test.cpp
 EyeCamera eyeOf(const Scene& s, uint32_t frame) {
   StereoRig rig;
   rig.head = poseOf(s.cameras.at(0));
-  return rig.eye(Eye::Left, kW, kH, haltonJitter(frame));
+  return rig.eye(Eye::Left, kW, kH, samplePosition(SamplerKind::Sobol, frame));
 }
 
 // The block is cornell's only metal: its diffuse albedo is the demodulation floor. Interior

@@ -36,7 +36,7 @@ constexpr int kW = 96, kH = 108;
 EyeCamera eyeOf(const Scene& s, uint32_t frame) {
   StereoRig rig;
   rig.head = poseOf(s.cameras.at(0));
-  return rig.eye(Eye::Left, kW, kH, haltonJitter(frame));
+  return rig.eye(Eye::Left, kW, kH, samplePosition(SamplerKind::Sobol, frame));
 }
 
 // 'spp' samples over 32 jitter positions (the box-filtered pixel the resolve converges

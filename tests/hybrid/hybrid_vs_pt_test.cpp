@@ -148,13 +148,13 @@ struct PairedStats {
 
 constexpr int kWidth = 20, kHeight = 18;
 
-EyeCamera monoCamera(const Scene& s, uint32_t frame) {
+EyeCamera monoCamera(const Scene& s, uint32_t frame, SamplerKind kind = SamplerKind::Sobol) {
   EyeCamera c;
   c.pose = poseOf(s.cameras.at(0));
   c.fov = FovTangents::symmetric(s.cameras[0].yfov, float(kWidth) / kHeight);
   c.width = kWidth;
   c.height = kHeight;
-  c.jitter = haltonJitter(frame);
+  c.jitter = samplePosition(kind, frame);
   return c;
 }
 
@@ -334,6 +334,29 @@ std::vector<glm::vec3> meanImage(const FrameStats& s) {
   return out;
 }
 
+// relMSE of the mean of the first N frames of one pixel sequence, N = 4, 16, 64, mean
+// over 'seeds' seeds: the hybrid's frames or pure path tracing's with the same settings.
+std::vector<double> convergence(const Scene& scene, const std::vector<glm::vec3>& ref,
+                                HybridRenderer& renderer, bool hybrid, int seeds) {
+  std::vector<double> e(3, 0.0);
+  const TraceContext& hc = renderer.traceContext();
+  for (int seed = 0; seed < seeds; ++seed) {
+    TraceSettings ts = hc.settings;
+    ts.seed = uint32_t(1 + 2 * seed + (hybrid ? 0 : 1));
+    renderer.setSeed(ts.seed);
+    const TraceContext pc{hc.scene, hc.embree, hc.lights, ts};
+    FrameStats stats;
+    int k = 0;
+    for (int f = 0; f < 64; ++f) {
+      const EyeCamera cam = monoCamera(scene, uint32_t(f), ts.sampler);
+      stats.add(hybrid ? renderer.render({cam, cam}, 1, uint32_t(f), nullptr)[0]
+                       : renderPathTraced(pc, cam, 0, uint32_t(f)));
+      if (f == 3 || f == 15 || f == 63) e[k++] += relMse(meanImage(stats), ref) / seeds;
+    }
+  }
+  return e;
+}
+
 class HybridConvergence : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
@@ -350,37 +373,43 @@ TEST_P(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
     reference.add(renderPathTraced(rc, monoCamera(scene, uint32_t(f)), 0, uint32_t(f)));
   const std::vector<glm::vec3> ref = meanImage(reference);
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
-  const TraceContext& hc = renderer.traceContext();
   // Heavy-tailed scenes average relMSE over independent seeds: one firefly among the first
-  // 4 frames otherwise decides relMSE(4) (spheres, pt, one seed: 2.48, 0.16, 0.014).
-  const int seeds = std::string(GetParam()) == "spheres" ? 4 : 1;
-  for (bool hybrid : {true, false}) {
-    // relMSE of the mean of the first N frames, N = 4, 16, 64 (prefixes of one sequence).
-    std::vector<double> e(3, 0.0);
-    for (int seed = 0; seed < seeds; ++seed) {
-      TraceSettings ts;
-      ts.seed = uint32_t(1 + 2 * seed + (hybrid ? 0 : 1));
-      renderer.setSeed(ts.seed);
-      const TraceContext pc{hc.scene, hc.embree, hc.lights, ts};
-      FrameStats stats;
-      int k = 0;
-      for (int f = 0; f < 64; ++f) {
-        const EyeCamera cam = monoCamera(scene, uint32_t(f));
-        stats.add(hybrid ? renderer.render({cam, cam}, 1, uint32_t(f), nullptr)[0]
-                         : renderPathTraced(pc, cam, 0, uint32_t(f)));
-        if (f == 3 || f == 15 || f == 63) e[k++] += relMse(meanImage(stats), ref) / seeds;
+  // 4 frames otherwise decides relMSE(4) (spheres, pt, one seed: 2.48, 0.16, 0.014; the
+  // Cornell box's metal block, hybrid, random sampler: 0.042, 0.042, 0.018).
+  const std::string name = GetParam();
+  const int seeds = name == "spheres" || name == "cornell" ? 4 : 1;
+  double random64[2] = {0.0, 0.0};  // the random sampler's relMSE(64), pt and hybrid
+  for (SamplerKind kind : {SamplerKind::Random, SamplerKind::Sobol}) {
+    TraceSettings settings;
+    settings.sampler = kind;
+    HybridRenderer renderer(scene, kWidth, kHeight, true, settings);
+    for (bool hybrid : {true, false}) {
+      const std::vector<double> e = convergence(scene, ref, renderer, hybrid, seeds);
+      const std::string what =
+          std::string(GetParam()) + " " + (hybrid ? "hybrid " : "pt ") + samplerName(kind);
+      RecordProperty(what + " relmse_4_16_64", std::to_string(e[0]) + " " + std::to_string(e[1]) +
+                                                   " " + std::to_string(e[2]));
+      EXPECT_LT(e[1], e[0]) << what;
+      EXPECT_LT(e[2], e[1]) << what;
+      if (kind == SamplerKind::Sobol) {
+        // The stratified sequence must not lose to independent numbers at N = 64 (issue
+        // 18): measured 0.3 .. 1.07 of the random sampler's relMSE over the 10 rows; the
+        // Cornell box, whose error is in the later bounces, gains least (1.14x at 64 spp
+        // in bench_sampler's 96x96 frames), and the relMSE of 360 pixels over 4 seeds
+        // varies by ~15 %, hence 1.25. A sequence whose draws were correlated or whose
+        // index did not span the frames does worse than random, or stops converging
+        // (the two assertions above).
+        EXPECT_LT(e[2], 1.25 * random64[hybrid]) << what;
+        continue;
       }
+      random64[hybrid] = e[2];
+      // Ideal 1/16 from N = 4 to 64 for independent samples. relMSE of a 360-pixel image is
+      // itself noisy (a few fireflies dominate it), so the band is a factor 2.5 either way;
+      // the reference's own error (1/32 of the N = 64 image's variance) flattens the curve
+      // slightly.
+      EXPECT_LT(e[2], e[0] / 16.0 * 2.5) << what;
+      EXPECT_GT(e[2], e[0] / 16.0 / 2.5) << what;
     }
-    const char* mode = hybrid ? "hybrid" : "pt";
-    RecordProperty(std::string(mode) + "_relmse_4_16_64",
-                   std::to_string(e[0]) + " " + std::to_string(e[1]) + " " + std::to_string(e[2]));
-    // Ideal 1/16 from N = 4 to 64. relMSE of a 360-pixel image is itself noisy (a few
-    // fireflies dominate it), so the band is a factor 2.5 either way; the reference's own
-    // error (1/32 of the N = 64 image's variance) flattens the curve slightly.
-    EXPECT_LT(e[2], e[0] / 16.0 * 2.5) << GetParam() << " " << mode;
-    EXPECT_GT(e[2], e[0] / 16.0 / 2.5) << GetParam() << " " << mode;
-    EXPECT_LT(e[1], e[0]) << GetParam() << " " << mode;
   }
 }
 
@@ -505,7 +534,7 @@ TEST(SkippedWork, HiddenAreaPixelsChangeNothingElse) {
   for (size_t i = 0; i < mask.size(); i += 7) mask[i] = 0;  // any pattern of skipped pixels
   StereoRig rig;
   rig.head = poseOf(scene.cameras[0]);
-  const EyeCamera cam = rig.eye(Eye::Left, kWidth, kHeight, haltonJitter(0));
+  const EyeCamera cam = rig.eye(Eye::Left, kWidth, kHeight, samplePosition(SamplerKind::Sobol, 0));
   const EyeImage all = renderer.render({cam, cam}, 1, 0, nullptr)[0];
   const EyeImage some = renderer.render({cam, cam}, 1, 0, nullptr, {&mask, nullptr})[0];
   size_t skipped = 0;

@@ -44,7 +44,7 @@ std::array<EyeCamera, 2> eyes(const Scene& s, uint32_t frame, bool turned) {
   rig.head = poseOf(s.cameras.at(0));
   if (turned)
     rig.head.orientation = rig.head.orientation * glm::angleAxis(3.0f, glm::vec3(0, 1, 0));
-  const glm::vec2 jitter = haltonJitter(frame);
+  const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, frame);
   return {rig.eye(Eye::Left, kW, kH, jitter), rig.eye(Eye::Right, kW, kH, jitter)};
 }
 

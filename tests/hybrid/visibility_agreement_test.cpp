@@ -4,6 +4,9 @@
 // only where the two rules legitimately disagree: on a shared triangle edge (either hit
 // within float noise of an edge) or on an alpha-mask cutout edge (GL filters the mip level
 // the pixel footprint needs, the tracer samples level 0). Those are counted and bounded.
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/builtin_scenes.h"
@@ -15,13 +18,34 @@ namespace photovr {
 namespace {
 
 constexpr uint32_t kNoHit = 0xFFFFFFFFu;
-// A barycentric this close to 0 is on an edge for float purposes: the G-buffer and Embree
-// compute b in float from differently ordered operations (~1e-6 apart), and a pixel ray
-// that grazes an edge can fall on either side.
-constexpr float kEdgeBarycentric = 1e-4f;
+// A pixel's sample this close to a triangle's edge on screen is on it for the rasterizer:
+// GL snaps vertices to its sub-pixel grid (llvmpipe: 8 bits, 1/256 px, so an edge moves by
+// up to ~0.006 px), and Embree intersects in float from differently ordered operations. A
+// bound in pixels, not in barycentrics: a sliver near a sphere's pole is a hundredth of a
+// pixel thin, so b = 0.05 there is on its edge (measured: such a pixel of 'spheres').
+constexpr double kEdgePixels = 1.0 / 64.0;  // 4x the sub-pixel grid's worst shift
 
-bool nearEdge(float b1, float b2) {
-  return std::min({b1, b2, 1.0f - b1 - b2}) < kEdgeBarycentric;
+// Distance in pixels from the sample of pixel (x, y) to the nearest edge of 'triangle' of
+// 'instance', projected by the camera (jitter included, as the G-buffer draws it).
+double edgeDistance(const Scene& scene, const EyeCamera& cam, uint32_t instance,
+                    uint32_t triangle, int x, int y) {
+  const Instance& inst = scene.instances.at(instance);
+  const Mesh& mesh = scene.meshes.at(size_t(inst.mesh));
+  const glm::dmat4 clip = glm::dmat4(cam.projection()) * glm::dmat4(cam.view()) *
+                          glm::dmat4(inst.transform);
+  glm::dvec2 v[3];
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec4 c = clip * glm::dvec4(mesh.positions[mesh.indices[3 * triangle + k]], 1.0);
+    v[k] = (glm::dvec2(c) / c.w * 0.5 + 0.5) * glm::dvec2(cam.width, cam.height);
+  }
+  const glm::dvec2 p(x + 0.5, y + 0.5);
+  double d = 1e30;
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec2 a = v[k], e = v[(k + 1) % 3] - a;
+    const double len = glm::length(e);
+    d = std::min(d, len > 0.0 ? std::abs(e.x * (p - a).y - e.y * (p - a).x) / len : 0.0);
+  }
+  return d;
 }
 
 struct Agreement {
@@ -40,14 +64,14 @@ Agreement compare(const Scene& scene, const gl::GBufferImage& g, const EyeCamera
       const bool same = h.hit ? (v.x == h.instance && v.y == h.triangle) : v.x == kNoHit;
       if (same) continue;
       const bool gEdge =
-          v.x != kNoHit && nearEdge(glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w));
-      const bool eEdge = h.hit && nearEdge(h.b1, h.b2);
+          v.x != kNoHit && edgeDistance(scene, cam, v.x, v.y, x, y) < kEdgePixels;
+      const bool eEdge =
+          h.hit && edgeDistance(scene, cam, h.instance, h.triangle, x, y) < kEdgePixels;
       // Adjacent triangles of one mesh share edges; so do coplanar meshes' silhouettes.
       if (gEdge || eEdge)
         ++a.edge;
       else
         ++a.other;
-      (void)scene;
     }
   return a;
 }
@@ -60,8 +84,9 @@ TEST_P(VisibilityAgreement, RasterAndEmbreeSeeTheSameTriangles) {
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
   const int w = 96, h = 108;
-  const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, w, h, haltonJitter(5)),
-                                         rig.eye(Eye::Right, w, h, haltonJitter(5))};
+  const std::array<EyeCamera, 2> eyes = {
+      rig.eye(Eye::Left, w, h, samplePosition(SamplerKind::Sobol, 5)),
+      rig.eye(Eye::Right, w, h, samplePosition(SamplerKind::Sobol, 5))};
   gl::SceneGpu gpu(scene);
   gl::GBufferPass pass(w, h, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"),
                        gl::EyeRouting::Layered);

@@ -171,7 +171,7 @@ void histogramBsdf(const BsdfParams& p, const glm::vec3& wo, uint32_t seed, Hist
   Sampler s = testSampler(seed);
   for (int i = 0; i < kSamples; ++i) {
     const glm::vec2 u = s.next2();
-    const BsdfSample b = sampleBsdf(p, wo, u, s.next());
+    const BsdfSample b = sampleBsdf(p, wo, u);
     if (!b.valid()) {
       hemi.addFailure();
       half.addFailure();
@@ -223,7 +223,7 @@ TEST(Bsdf, SampleAgreesWithEvalAndPdf) {
     const BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
     const glm::vec3 wo = sampleCosineHemisphere(s.next2());
     const glm::vec2 u = s.next2();
-    const BsdfSample b = sampleBsdf(p, wo, u, s.next());
+    const BsdfSample b = sampleBsdf(p, wo, u);
     if (!b.valid()) continue;
     // The sampler reports pdfBsdf and evalBsdf of its direction exactly (it calls them).
     ASSERT_EQ(b.pdf, pdfBsdf(p, wo, b.wi));
@@ -260,8 +260,7 @@ TEST(Bsdf, OneVertexServesEveryDirectionAsTheFreshCallsDo) {
       ASSERT_EQ(e.f.specular, f.specular);
       ASSERT_EQ(e.pdf, pdfBsdf(p, wo, wi));
       const glm::vec2 u = s.next2();
-      const float uLobe = s.next();
-      const BsdfSample a = sampleBsdf(v, u, uLobe), b = sampleBsdf(p, wo, u, uLobe);
+      const BsdfSample a = sampleBsdf(v, u), b = sampleBsdf(p, wo, u);
       ASSERT_EQ(a.wi, b.wi);
       ASSERT_EQ(a.weight, b.weight);
       ASSERT_EQ(a.pdf, b.pdf);
@@ -300,7 +299,7 @@ Estimate directionalAlbedo(const BsdfParams& p, const glm::vec3& wo, int n, uint
   glm::dvec3 sum(0.0), sum2(0.0);
   for (int i = 0; i < n; ++i) {
     const glm::vec2 u = s.next2();
-    const BsdfSample b = sampleBsdf(p, wo, u, s.next());
+    const BsdfSample b = sampleBsdf(p, wo, u);
     const glm::dvec3 w(b.weight);
     sum += w;
     sum2 += w * w;
@@ -341,7 +340,7 @@ TEST(Bsdf, GltfFresnelMixWouldGainEnergyAtGrazing) {
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < n; ++i) {
     const glm::vec2 u = s.next2();
-    const BsdfSample b = sampleBsdf(p, wo, u, s.next());
+    const BsdfSample b = sampleBsdf(p, wo, u);
     if (!b.valid()) continue;
     const glm::vec3 h = glm::normalize(wo + b.wi);
     const glm::vec3 f0(kDielectricF0);
@@ -359,12 +358,11 @@ TEST(Bsdf, GltfFresnelMixWouldGainEnergyAtGrazing) {
 
 // --- Robustness. ------------------------------------------------------------------------
 
-void expectFinite(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi, glm::vec2 u,
-                  float uLobe) {
+void expectFinite(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi, glm::vec2 u) {
   ASSERT_TRUE(isFinite(evalBsdf(p, wo, wi))) << wo.z << " " << wi.z;
   const float pdf = pdfBsdf(p, wo, wi);
   ASSERT_TRUE(isFinite(pdf) && pdf >= 0.0f);
-  const BsdfSample s = sampleBsdf(p, wo, u, uLobe);
+  const BsdfSample s = sampleBsdf(p, wo, u);
   ASSERT_TRUE(isFinite(s.wi) && isFinite(s.f) && isFinite(s.pdf) && isFinite(s.weight));
   ASSERT_GE(s.pdf, 0.0f);
   if (s.valid()) {
@@ -389,15 +387,16 @@ TEST(Bsdf, FiniteForEdgeInputs) {
                                        glm::normalize(glm::vec3(-1, 0, 1e-7f)),
                                        {nan, 0, 1},
                                        glm::vec3(0.0f)};
-  const std::vector<glm::vec2> us = {
-      {0, 0}, {kOneMinusEpsilon, kOneMinusEpsilon}, {0.5f, 0.5f}, {0, kOneMinusEpsilon}};
+  // u.x also picks the lobe: 0 and 1 - eps are each lobe's extreme.
+  const std::vector<glm::vec2> us = {{0, 0},
+                                     {kOneMinusEpsilon, kOneMinusEpsilon},
+                                     {0.5f, 0.5f},
+                                     {0, kOneMinusEpsilon},
+                                     {kOneMinusEpsilon, 0}};
   for (const BsdfParams& p : ps)
     for (const glm::vec3& wo : dirs)
       for (const glm::vec3& wi : dirs)
-        for (glm::vec2 u : us) {
-          expectFinite(p, wo, wi, u, 0.0f);
-          expectFinite(p, wo, wi, u, kOneMinusEpsilon);
-        }
+        for (glm::vec2 u : us) expectFinite(p, wo, wi, u);
 }
 
 TEST(Bsdf, FiniteForRandomInputs) {
@@ -407,7 +406,7 @@ TEST(Bsdf, FiniteForRandomInputs) {
                        s.next() < 0.2f ? 0.0f : s.next()};
     const glm::vec3 wo = sampleUniformSphere(s.next2()), wi = sampleUniformSphere(s.next2());
     const glm::vec2 u = s.next2();
-    expectFinite(p, wo, wi, u, s.next());
+    expectFinite(p, wo, wi, u);
   }
 }
 
@@ -417,14 +416,21 @@ TEST(Bsdf, BelowTheSurfaceIsBlack) {
   EXPECT_EQ(evalBsdf(p, down, up), glm::vec3(0.0f));
   EXPECT_EQ(evalBsdf(p, up, down), glm::vec3(0.0f));
   EXPECT_EQ(pdfBsdf(p, down, up), 0.0f);
-  EXPECT_FALSE(sampleBsdf(p, down, {0.3f, 0.3f}, 0.5f).valid());
-  EXPECT_EQ(sampleBsdf(p, down, {0.3f, 0.3f}, 0.5f).weight, glm::vec3(0.0f));
+  EXPECT_FALSE(sampleBsdf(p, down, {0.3f, 0.3f}).valid());
+  EXPECT_EQ(sampleBsdf(p, down, {0.3f, 0.3f}).weight, glm::vec3(0.0f));
 }
 
 TEST(Bsdf, MetalsNeverSampleTheDiffuseLobe) {
   const BsdfParams metal = params(1.0f, 0.5f);
   EXPECT_EQ(specularProbability(metal, incident(30.0f)), 1.0f);
-  EXPECT_TRUE(sampleBsdf(metal, incident(30.0f), {0.4f, 0.4f}, kOneMinusEpsilon).specularLobe);
+  // u.x picks the lobe (and is reused for the direction): every value picks specular.
+  for (float ux : {0.0f, 0.4f, 0.99f, kOneMinusEpsilon}) {
+    const BsdfSample b = sampleBsdf(metal, incident(30.0f), {ux, 0.4f});
+    EXPECT_TRUE(b.specularLobe || !b.valid()) << ux;
+    if (ux == 0.4f) {
+      EXPECT_TRUE(b.valid() && b.specularLobe);
+    }
+  }
   EXPECT_EQ(specularProbability(params(0.0f, 0.5f, glm::vec3(0.0f)), incident(30.0f)), 1.0f);
   // A white dielectric picks specular with the thesis's probability F(n.wo) (Algorithm 5).
   const float f = fresnelSchlick(glm::vec3(kDielectricF0), incident(60.0f).z).g;
@@ -442,7 +448,7 @@ TEST(Bsdf, RoughnessZeroIsANearMirror) {
   int beyondHalfDegree = 0, beyondFiveDegrees = 0;
   for (int i = 0; i < 10000; ++i) {
     const glm::vec2 u = s.next2();
-    const BsdfSample b = sampleBsdf(p, wo, u, s.next());
+    const BsdfSample b = sampleBsdf(p, wo, u);
     ASSERT_TRUE(b.valid());
     const float c = glm::dot(b.wi, mirror);
     beyondHalfDegree += c < std::cos(glm::radians(0.5f));

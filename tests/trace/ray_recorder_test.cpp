@@ -17,7 +17,8 @@ EyeImage render(const Scene& scene, const EmbreeScene& embree) {
   const TraceContext ctx{scene, embree, lights, settings};
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
-  return renderPathTraced(ctx, rig.eye(Eye::Left, 16, 18, haltonJitter(0)), 0, 0);
+  return renderPathTraced(ctx, rig.eye(Eye::Left, 16, 18, samplePosition(SamplerKind::Sobol, 0)), 0,
+                          0);
 }
 
 TEST(RayRecorder, SeesEveryRayAndChangesNothing) {

@@ -74,20 +74,28 @@ TEST(Rng, SameCountersSameNumbers) {
   }
 }
 
-TEST(Rng, PathKeyThenBounceIsMake) {
+TEST(Rng, PathSamplerThenBounceIsMake) {
   // The path tracer hashes a path's counters once and each bounce from there; next() hashes
-  // the key once per sampler. Both must leave every number as hashCombine defines it.
-  const SampleCounters c{.pixel = 70, .eye = 1, .frame = 13, .sample = 3, .bounce = 0, .seed = 5};
-  const uint32_t path = Sampler::pathKey(c);
-  for (uint32_t bounce = 0; bounce < 9; ++bounce) {
-    SampleCounters d = c;
-    d.bounce = bounce;
-    Sampler a = Sampler::make(d), b = Sampler::forBounce(path, bounce);
-    EXPECT_EQ(a.key, b.key);
-    for (uint32_t dim = 0; dim < 8; ++dim) {
-      const float expected = toUnitFloat(hashCombine(a.key, dim));
-      EXPECT_EQ(a.next(), expected);
-      EXPECT_EQ(b.next(), expected);
+  // the key once per sampler. Both must leave every number as the stream defines it:
+  // hashCombine(key, draw) itself (Random) or the shuffled Sobol point of the sample index
+  // under that seed (Sobol).
+  for (const SamplerKind kind : {SamplerKind::Random, SamplerKind::Sobol}) {
+    const SampleCounters c{.pixel = 70, .eye = 1, .frame = 13, .sample = 3, .bounce = 0,
+                           .seed = 5, .samplesPerFrame = 4, .kind = kind};
+    const PathSampler path = PathSampler::make(c);
+    EXPECT_EQ(path.index, kind == SamplerKind::Sobol ? 13u * 4u + 3u : 0u);
+    for (uint32_t bounce = 0; bounce < 9; ++bounce) {
+      SampleCounters d = c;
+      d.bounce = bounce;
+      Sampler a = Sampler::make(d), b = path.bounce(bounce);
+      EXPECT_EQ(a.key, b.key);
+      for (uint32_t dim = 0; dim < 8; ++dim) {
+        const uint32_t bits = hashCombine(a.key, dim);
+        const float expected = toUnitFloat(
+            kind == SamplerKind::Random ? bits : shuffledSobol1D(c.sampleIndex(), bits));
+        EXPECT_EQ(a.next(), expected);
+        EXPECT_EQ(b.next(), expected);
+      }
     }
   }
   Sampler zero;  // a default sampler draws as key 0 does

@@ -97,7 +97,10 @@ TEST(PathTracer, InsideADiffuseSphereWithAPointLightAtItsCentre) {
     double sum = 0.0, sum2 = 0.0;
     const int n = 6000;
     for (int i = 0; i < n; ++i) {
-      const double v = continuePath(ctx, hit, wo, {11, 0, 0, uint32_t(i), 0, 0}).radiance.r;
+      const double v =
+          continuePath(ctx, hit, wo,
+                       {.pixel = 11, .sample = uint32_t(i), .kind = ctx.settings.sampler})
+              .radiance.r;
       sum += v, sum2 += v * v;
     }
     const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
