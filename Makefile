@@ -25,7 +25,8 @@ build: setup
 # The separate benchmarks, each writing a CSV to out/bench/: tracer vs raw Embree
 # (bench_trace), hybrid stage times (bench_hybrid), denoiser passes and equal-time quality
 # (bench_denoise), what each skip saves (bench_skips), compositor vs G-buffer and lens
-# sampling (bench_compositor), overscan margins (bench_overscan). `photovr bench [--quick]`
+# sampling (bench_compositor), overscan margins (bench_overscan), the Sobol sampler against
+# the random one (bench_sampler). `photovr bench [--quick]`
 # is the error-vs-time harness. Not
 # tests: their numbers depend on the machine and its load.
 bench: build
@@ -35,6 +36,7 @@ bench: build
 	./$(BUILD)/bench/photovr_bench_skips --out out/bench
 	./$(BUILD)/bench/photovr_bench_compositor --out out/bench
 	./$(BUILD)/bench/photovr_bench_overscan --out out/bench
+	./$(BUILD)/bench/photovr_bench_sampler --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build. `make asan` runs the whole suite under
 # it (~15 min of tests on 2 cores); `make test` runs the modules in SANITIZED_MODULES, the part
