@@ -109,11 +109,12 @@ ModeResult runHybrid(HybridRenderer& renderer, const RenderRequest& r, int eyeCo
   ModeResult m;
   m.eyes.resize(eyeCount);
   // Warm-up: shader compilation, and the first touch of the storage every frame reuses.
-  renderer.recycle(renderer.render(eyeCameras(r.view, r.width, r.height, 0, r.sampler), eyeCount, 0, nullptr));
+  renderer.recycle(
+      renderer.render(eyeCameras(r.view, r.width, r.height, 0, r.sampler), eyeCount, 0, nullptr));
   for (int f = 0; f < r.frames; ++f) {
     HybridFrameTimes t;
-    auto out = renderer.render(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler), eyeCount,
-                               uint32_t(f), &t);
+    auto out = renderer.render(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler),
+                               eyeCount, uint32_t(f), &t);
     for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], out[e], f);
     renderer.recycle(std::move(out));
     m.stages.gbufferMs += t.gbufferMs, m.stages.readbackMs += t.readbackMs;

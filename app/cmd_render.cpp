@@ -62,11 +62,10 @@ std::string defaultOutDir(const std::string& scene) {
 }  // namespace
 
 RenderRequest parseRenderRequest(const Args& args) {
-  std::set<std::string> valued = {"--scene",   "--env",      "--width",   "--height",
-                                  "--backend", "--out",      "--mode",    "--spp",
-                                  "--bounces", "--frames",   "--seed",    "--exposure",
-                                  "--denoise", "--sampling", "--no-skip", "--converge",
-                                  "--sampler"};
+  std::set<std::string> valued = {
+      "--scene",   "--env",      "--width",   "--height",   "--backend", "--out",
+      "--mode",    "--spp",      "--bounces", "--frames",   "--seed",    "--exposure",
+      "--denoise", "--sampling", "--no-skip", "--converge", "--sampler"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())

@@ -328,8 +328,9 @@ int runSession(ViewConfig& c) {
       s.head.desktop->handle(desktopInput(in, float(dt * 1e-3)));
     if (auto f = s.renderer->take()) s.accept(std::move(*f));
     if (!s.renderer->busy()) {
-      s.renderer->start(headEyes(s.headPose(s.head.now()), c.eyes, samplePosition(SamplerKind::Sobol, started++)),
-                        c.settings);
+      s.renderer->start(
+          headEyes(s.headPose(s.head.now()), c.eyes, samplePosition(SamplerKind::Sobol, started++)),
+          c.settings);
     }
     if (s.shown) s.composite(in.framebufferSize);
     if (s.overlay) {

@@ -161,8 +161,8 @@ class HmdSequence {
 
   // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
   void frame(int k, const FrameTimes& t, const Pose& trackedA, const Pose& trackedB) {
-    const auto from =
-        headEyes(composePose(r_.view.head, trackedA), eyes_, samplePosition(r_.sampler, uint32_t(k)));
+    const auto from = headEyes(composePose(r_.view.head, trackedA), eyes_,
+                               samplePosition(r_.sampler, uint32_t(k)));
     const auto to = headEyes(composePose(r_.view.head, trackedB), eyes_, glm::vec2(0));
     const auto tr = Clock::now();
     auto eyes = render(from, k);

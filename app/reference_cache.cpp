@@ -113,7 +113,8 @@ Reference loadOrRenderReference(const ReferenceSpec& spec, int spp) {
   const auto t0 = std::chrono::steady_clock::now();
   uint64_t rays = 0;
   for (int f = frames; f < targetFrames; ++f) {
-    const auto eyes = eyeCameras(spec.view, spec.width, spec.height, uint32_t(f), ctx.settings.sampler);
+    const auto eyes =
+        eyeCameras(spec.view, spec.width, spec.height, uint32_t(f), ctx.settings.sampler);
     for (int e = 0; e < eyeCount; ++e) {
       const EyeImage img = renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(f));
       rays += img.rays;

@@ -47,7 +47,8 @@ std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRender
   uint64_t rays = 0;
   for (framesDone = 0; framesDone < r.frames;) {
     const int f = framesDone;
-    auto frame = renderFrame(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler), uint32_t(f));
+    auto frame =
+        renderFrame(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler), uint32_t(f));
     for (int e = 0; e < eyeCount; ++e) {
       rays += frame[e].rays;
       accumulate(sums[e], frame[e], f);

@@ -69,8 +69,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           img.normal[i] = hits[i].surface.shadingNormal;
           img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
           if (spp == 0) continue;
-          const SampleCounters counters{uint32_t(i), eye, frame, 0, 0, ctx.settings.seed, spp,
-                                        ctx.settings.sampler};
+          const SampleCounters counters{
+              uint32_t(i), eye, frame, 0, 0, ctx.settings.seed, spp, ctx.settings.sampler};
           const PixelEstimate est = estimatePixel(ctx, hits[i].surface, dir, counters, spp);
           storePixel(img, i, est);
           tileRays += est.rays;

@@ -14,8 +14,8 @@ struct PixelEstimate {
   glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
   glm::vec3 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
   glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
-  uint32_t samples = 0;  // paths continued from a hit
-  uint32_t misses = 0;   // primary rays that left the scene
+  uint32_t samples = 0;                                 // paths continued from a hit
+  uint32_t misses = 0;                                  // primary rays that left the scene
   uint64_t rays = 0, rejected = 0;
 };
 

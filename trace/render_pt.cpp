@@ -28,7 +28,7 @@ void tracePixel(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uin
   const size_t i = img.index(x, y);
   const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
-  SampleCounters counters{uint32_t(i), eye, frame, 0, 0, ctx.settings.seed, spp,
+  SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
                           ctx.settings.sampler};
   PixelEstimate e;
   for (uint32_t s = 0; s < spp; ++s) {

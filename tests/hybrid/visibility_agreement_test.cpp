@@ -27,12 +27,12 @@ constexpr double kEdgePixels = 1.0 / 64.0;  // 4x the sub-pixel grid's worst shi
 
 // Distance in pixels from the sample of pixel (x, y) to the nearest edge of 'triangle' of
 // 'instance', projected by the camera (jitter included, as the G-buffer draws it).
-double edgeDistance(const Scene& scene, const EyeCamera& cam, uint32_t instance,
-                    uint32_t triangle, int x, int y) {
+double edgeDistance(const Scene& scene, const EyeCamera& cam, uint32_t instance, uint32_t triangle,
+                    int x, int y) {
   const Instance& inst = scene.instances.at(instance);
   const Mesh& mesh = scene.meshes.at(size_t(inst.mesh));
-  const glm::dmat4 clip = glm::dmat4(cam.projection()) * glm::dmat4(cam.view()) *
-                          glm::dmat4(inst.transform);
+  const glm::dmat4 clip =
+      glm::dmat4(cam.projection()) * glm::dmat4(cam.view()) * glm::dmat4(inst.transform);
   glm::dvec2 v[3];
   for (int k = 0; k < 3; ++k) {
     const glm::dvec4 c = clip * glm::dvec4(mesh.positions[mesh.indices[3 * triangle + k]], 1.0);
@@ -63,8 +63,7 @@ Agreement compare(const Scene& scene, const gl::GBufferImage& g, const EyeCamera
       a.hits += h.hit;
       const bool same = h.hit ? (v.x == h.instance && v.y == h.triangle) : v.x == kNoHit;
       if (same) continue;
-      const bool gEdge =
-          v.x != kNoHit && edgeDistance(scene, cam, v.x, v.y, x, y) < kEdgePixels;
+      const bool gEdge = v.x != kNoHit && edgeDistance(scene, cam, v.x, v.y, x, y) < kEdgePixels;
       const bool eEdge =
           h.hit && edgeDistance(scene, cam, h.instance, h.triangle, x, y) < kEdgePixels;
       // Adjacent triangles of one mesh share edges; so do coplanar meshes' silhouettes.

@@ -80,8 +80,14 @@ TEST(Rng, PathSamplerThenBounceIsMake) {
   // hashCombine(key, draw) itself (Random) or the shuffled Sobol point of the sample index
   // under that seed (Sobol).
   for (const SamplerKind kind : {SamplerKind::Random, SamplerKind::Sobol}) {
-    const SampleCounters c{.pixel = 70, .eye = 1, .frame = 13, .sample = 3, .bounce = 0,
-                           .seed = 5, .samplesPerFrame = 4, .kind = kind};
+    const SampleCounters c{.pixel = 70,
+                           .eye = 1,
+                           .frame = 13,
+                           .sample = 3,
+                           .bounce = 0,
+                           .seed = 5,
+                           .samplesPerFrame = 4,
+                           .kind = kind};
     const PathSampler path = PathSampler::make(c);
     EXPECT_EQ(path.index, kind == SamplerKind::Sobol ? 13u * 4u + 3u : 0u);
     for (uint32_t bounce = 0; bounce < 9; ++bounce) {
