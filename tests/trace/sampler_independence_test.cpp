@@ -44,21 +44,18 @@ void expectIndependent(const Pair& pair, const char* what) {
     EXPECT_NEAR(lowerLeftShare(pair, pixel), 0.25, 0.1) << what << ", pixel " << pixel;
 }
 
+// The first two 2D draws of one vertex: x of each, or y of each.
+glm::vec2 twoDraws(uint32_t pixel, uint32_t index, bool y) {
+  Sampler s = samplerOf(pixel, index, 0);
+  const glm::vec2 a = s.next2(), b = s.next2();
+  return y ? glm::vec2(a.y, b.y) : glm::vec2(a.x, b.x);
+}
+
 TEST(SamplerIndependence, TwoDimensionalDrawsOfOneVertex) {
-  expectIndependent(
-      [](uint32_t px, uint32_t i) {
-        Sampler s = samplerOf(px, i, 0);
-        const glm::vec2 a = s.next2(), b = s.next2();
-        return glm::vec2(a.x, b.x);
-      },
-      "x of draws 0 and 1");
-  expectIndependent(
-      [](uint32_t px, uint32_t i) {
-        Sampler s = samplerOf(px, i, 0);
-        const glm::vec2 a = s.next2(), b = s.next2();
-        return glm::vec2(a.y, b.y);
-      },
-      "y of draws 0 and 1");
+  expectIndependent([](uint32_t px, uint32_t i) { return twoDraws(px, i, false); },
+                    "x of draws 0 and 1");
+  expectIndependent([](uint32_t px, uint32_t i) { return twoDraws(px, i, true); },
+                    "y of draws 0 and 1");
 }
 
 TEST(SamplerIndependence, OneAndTwoDimensionalDrawsAndBounces) {
