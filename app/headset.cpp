@@ -103,7 +103,7 @@ gl::LensParams dk2PanelLens(int panelWidth, int panelHeight) {
   hmd::LensModel model;  // DK2 defaults (dk2.md §2, §6); only the pixel count changes
   model.panel.hResolution = panelWidth;
   model.panel.vResolution = panelHeight;
-  return gl::lensParamsOf(model);
+  return hmd::flattenLens(model);
 }
 
 std::array<FovTangents, 2> eyeFovs(const StereoLayout& layout) {

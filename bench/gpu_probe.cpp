@@ -120,7 +120,7 @@ SceneRow probeScene(const std::string& name, const Config& c, bool layered) {
   lens.panel.hResolution = c.panelW, lens.panel.vResolution = c.panelH;
   const std::array<FovTangents, 2> fov = {FovTangents::dk2LeftEye(),
                                           FovTangents::dk2LeftEye().mirrored()};
-  gl::Timewarp timewarp(gl::lensParamsOf(lens), c.eyeW, c.eyeH, fov);
+  gl::Timewarp timewarp(hmd::flattenLens(lens), c.eyeW, c.eyeH, fov);
   gl::PanelOutput panel(c.panelW, c.panelH, 90);
   const Pose head = poseOf(scene.cameras.at(0));
   const auto from = eyesAt(head, c.eyeW, c.eyeH);

@@ -143,18 +143,6 @@ ReprojectStats Reprojector::stats(int eye) const {
 // ---------------------------------------------------------------------------------------
 // Distortion
 
-glm::vec2 lensCentreOf(const LensParams& lens, int eye) {
-  // hmd/lens.cpp lensCentre: the lens sits lensSeparation / 2 from the panel centre.
-  const double x = 1.0 - 2.0 * double(lens.lensSeparationM) / lens.panelWidthM;
-  const double y = 2.0 * double(lens.verticalCentreM) / lens.panelHeightM - 1.0;
-  return {float(eye == 0 ? x : -x), float(y)};
-}
-
-glm::vec2 screenToLensScaleOf(const LensParams& lens) {
-  return {float(0.25 * lens.panelWidthM / lens.metresPerTanAngle),
-          float(0.5 * lens.panelHeightM / lens.metresPerTanAngle)};
-}
-
 shared::DistortUniforms distortUniforms(const LensParams& lens, int eye, const FovTangents& fov,
                                         int eyeWidth, int eyeHeight, bool footprint) {
   shared::DistortUniforms u{};
@@ -163,7 +151,7 @@ shared::DistortUniforms distortUniforms(const LensParams& lens, int eye, const F
   u.k1 = {k[4], k[5], k[6], k[7]};
   u.k2 = {k[8], k[9], k[10], lens.maxR};
   u.chroma = {lens.chroma[0], lens.chroma[1], lens.chroma[2], lens.chroma[3]};
-  const glm::vec2 c = lensCentreOf(lens, eye), s = screenToLensScaleOf(lens);
+  const glm::vec2 c = lens.lensCentre[size_t(eye)], s = lens.screenToLensScale;
   u.lens = {c.x, c.y, s.x, s.y};
   u.fov = {fov.left, fov.right, fov.up, fov.down};
   const int halfW = lens.hResolution / 2;
@@ -199,14 +187,6 @@ Distorter::~Distorter() {
   api::DeleteTextures(4, t);
   api::DeleteBuffers(1, &uniforms_);
   api::DeleteSamplers(1, &linearSampler_);
-}
-
-glm::vec2 Distorter::lensCentre(int eye) const {
-  return lensCentreOf(lens_, eye);
-}
-
-glm::vec2 Distorter::screenToLensScale() const {
-  return screenToLensScaleOf(lens_);
 }
 
 void Distorter::run(unsigned eyeArray, int eyeCount, bool footprint) {

@@ -20,7 +20,7 @@
 // Distortion (Distorter): per display pixel of each eye's half of the panel and per colour
 // channel, the tan-angle of hmd::screenToTan (LibOVR CatmullRom10 + chromatic terms, float),
 // a bilinear sample of the eye buffer there, black where the lens does not see. gl/ does not
-// depend on hmd/: the lens arrives flattened in LensParams (fill it from hmd::LensModel).
+// depend on hmd/: the lens arrives flattened in LensParams (hmd::flattenLens fills it).
 #pragma once
 
 #include <array>
@@ -30,6 +30,7 @@
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
+#include "core/lens_params.h"
 #include "gl/program.h"
 
 namespace photovr::gl {
@@ -91,42 +92,14 @@ class Reprojector {
   unsigned inColor_ = 0, inDepth_ = 0, color_ = 0, depth_ = 0;
 };
 
-// hmd::LensModel flattened (hmd/lens.h documents each field).
-struct LensParams {
-  std::array<float, 11> k{};
-  float maxR = 1.0f;
-  float metresPerTanAngle = 0.036f;
-  std::array<float, 4> chroma{};
-  float panelWidthM = 0.12576f, panelHeightM = 0.07074f;
-  float verticalCentreM = 0.03537f, lensSeparationM = 0.0635f;
-  int hResolution = 1920, vResolution = 1080;  // both eyes, landscape
-};
-
-// Flattens an hmd::LensModel (or anything with its fields) without gl/ depending on hmd/.
-template <typename LensModel>
-LensParams lensParamsOf(const LensModel& m) {
-  LensParams p;
-  for (int i = 0; i < 11; ++i) p.k[i] = float(m.lens.k[i]);
-  p.maxR = float(m.lens.maxR);
-  p.metresPerTanAngle = float(m.lens.metresPerTanAngle);
-  for (int i = 0; i < 4; ++i) p.chroma[i] = float(m.lens.chroma[i]);
-  p.panelWidthM = float(m.panel.widthM);
-  p.panelHeightM = float(m.panel.heightM);
-  p.verticalCentreM = float(m.panel.verticalCentreM);
-  p.lensSeparationM = float(m.panel.lensSeparationM);
-  p.hResolution = m.panel.hResolution;
-  p.vResolution = m.panel.vResolution;
-  return p;
-}
+// The lens arrives from hmd::flattenLens (core/lens_params.h). Named here too, as gl::LensParams,
+// for the callers that spelled it so when it lived in this header.
+using photovr::LensParams;
 
 namespace shared {
 struct DistortUniforms;
 }
 
-// Lens centre of an eye's half in screen NDC and the screen-to-lens scale, as
-// hmd::lensCentre / hmd::screenToLensScale compute them.
-glm::vec2 lensCentreOf(const LensParams& lens, int eye);
-glm::vec2 screenToLensScaleOf(const LensParams& lens);
 // The distortion shaders' uniforms for one eye (shaders/compositor_shared.h); 'footprint'
 // asks distort.comp for its debug outputs.
 shared::DistortUniforms distortUniforms(const LensParams& lens, int eye, const FovTangents& fov,
@@ -161,10 +134,9 @@ class Distorter {
   std::vector<DistortSample> readSamples() const;     // panel-sized; of the last debug run
   std::vector<uint8_t> readFootprint(int eye) const;  // eye-buffer sized, 1 = read
 
-  // Lens centre of an eye's half in screen NDC and the screen-to-lens scale, as
-  // hmd::lensCentre / hmd::screenToLensScale compute them.
-  glm::vec2 lensCentre(int eye) const;
-  glm::vec2 screenToLensScale() const;
+  // The lens's derived values, as hmd::flattenLens stored them.
+  glm::vec2 lensCentre(int eye) const { return lens_.lensCentre[size_t(eye)]; }
+  glm::vec2 screenToLensScale() const { return lens_.screenToLensScale; }
 
  private:
   LensParams lens_;

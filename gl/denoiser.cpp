@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
-#include <chrono>
+#include <utility>
 
 #include "core/error.h"
 #include "gl/gbuffer.h"
@@ -106,6 +106,7 @@ Denoiser::Denoiser(int w, int h, const DenoiseParams& params)
   api::CreateBuffers(1, &uniforms_);
   api::NamedBufferStorage(uniforms_, sizeof(shared::DenoiseUniforms), nullptr,
                           GL_DYNAMIC_STORAGE_BIT);
+  buildPasses();
 }
 
 Denoiser::~Denoiser() {
@@ -120,15 +121,9 @@ Denoiser::~Denoiser() {
   api::DeleteBuffers(1, &uniforms_);
 }
 
-template <typename F>
-void Denoiser::timed(const char* name, F&& pass) {
-  if (!timing_) return pass();
-  api::Finish();
-  const auto t0 = std::chrono::steady_clock::now();
-  pass();
-  api::Finish();
-  const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - t0;
-  timings_.push_back({name, ms.count()});
+void Denoiser::setParams(const DenoiseParams& params) {
+  params_ = params;
+  buildPasses();
 }
 
 void Denoiser::run(const GBufferPass& gbuffer, const std::array<NoisyEye, 2>& eyes, int eyeCount,
@@ -143,55 +138,174 @@ void Denoiser::run(const DenoiseGeometry& g, const std::array<NoisyEye, 2>& eyes
     throw UsageError("denoiser: iterations must be in [0, 5]");
   eyeCount_ = eyeCount;
   timings_.clear();
-  timed("upload", [&] {
-    uploadUniforms(resetHistory || !historyValid_);
-    upload(eyes, eyeCount);
-  });
+  frameIn_ = {g, &eyes, resetHistory};
+  passes_[size_t(mode)].run(timing_ ? &timings_ : nullptr);
+  frameIn_.eyes = nullptr;
   if (mode == DenoiseMode::Off) {
-    const GLuint raw[2] = {inputs_[InDiffuse], inputs_[InSpecular]};
-    timed("composite", [&] { composite(raw, g); });
     historyValid_ = false;  // 'off' does not maintain the history
     return;
-  }
-  const int cur = frame_ & 1;
-  const bool filter = mode == DenoiseMode::Full && params_.iterations > 0;
-  const bool clamp = filter && params_.suppressFireflies;
-  const bool historyFiltered = filter && params_.historyFromFirstIteration;
-  GLuint* const history = history_[cur];
-  // The colour history is the temporal output, after the firefly clamp where it runs
-  // (DenoiseParams::historyFromFirstIteration says why not the first iteration's output).
-  GLuint* const temporalOut = clamp || historyFiltered ? filterA_ : history;
-  timed("temporal", [&] { temporal(g, temporalOut[0], temporalOut[1]); });
-  stages_[0][0] = temporalOut[0];
-  stages_[0][1] = temporalOut[1];
-  if (!filter) {
-    timed("composite", [&] { composite(history, g); });
-  } else {
-    // The iterations ping-pong between two buffers holding neither stage 0 nor the history;
-    // last frame's history is one of them once the temporal pass has read it.
-    GLuint* const scratch[2] = {temporalOut == filterA_ ? filterB_ : filterA_,
-                                temporalOut == filterA_ ? history_[cur ^ 1] : filterB_};
-    const GLuint* in = temporalOut;
-    if (clamp) {
-      const GLuint* out = historyFiltered ? scratch[0] : history;
-      timed("firefly", [&] { firefly(in, out); });
-      in = out;
-    }
-    for (int i = 0; i < params_.iterations; ++i) {
-      const GLuint* out = i == 0 && historyFiltered ? history
-                          : in == scratch[0]        ? scratch[1]
-                                                    : scratch[0];
-      timed(i + 1 == params_.iterations ? "atrous+composite" : "atrous",
-            [&] { atrous(i, in, out); });
-      stages_[i + 1][0] = out[0];
-      stages_[i + 1][1] = out[1];
-      in = out;
-    }
-    timed("resolve", [&] { resolve(g); });
   }
   ++frame_;
   historyValid_ = true;
 }
+
+// ---------------------------------------------------------------------------------------
+// The pass lists. Resources are named by content; "prev.*" is what this frame's namesake
+// was last frame (the ping-pong by parity), "history" whichever lobe pair is next frame's
+// colour history. Where a pair lives (Lobes) is chosen here, once per list.
+
+namespace {
+
+std::vector<std::string> listInputs() {
+  return {"gbuffer.visibility", "gbuffer.normal",     "gbuffer.material", "gbuffer.motion",
+          "gbuffer.depth",      "prev.geometry",      "prev.aux",         "prev.moments",
+          "prev.history",       "prev.resolveHistory"};
+}
+
+}  // namespace
+
+void Denoiser::buildPasses() {
+  for (DenoiseMode m : {DenoiseMode::Off, DenoiseMode::Temporal, DenoiseMode::Full})
+    passes_[size_t(m)] = buildPasses(m);
+}
+
+PassList Denoiser::buildPasses(DenoiseMode mode) {
+  // run() refuses other counts before it runs a list.
+  const int iterations = std::clamp(params_.iterations, 0, kMaxIterations);
+  const bool filter = mode == DenoiseMode::Full && iterations > 0;
+  const bool clamp = filter && params_.suppressFireflies;
+  const bool historyFiltered = filter && params_.historyFromFirstIteration;
+  std::vector<PassDecl> passes = {uploadPass()};
+  std::vector<std::string> outputs = {"linear", "display", "depth"};
+  if (mode == DenoiseMode::Off) {
+    passes.push_back(compositePass({"noisy", Lobes::Noisy}));
+    return PassList(listInputs(), outputs, std::move(passes));
+  }
+  outputs.insert(outputs.end(), {"history", "geometry", "aux", "moments"});
+  // The colour history is the temporal output, after the firefly clamp where it runs
+  // (DenoiseParams::historyFromFirstIteration says why not the first iteration's output).
+  const Colour temporalOut{"temporal", clamp || historyFiltered ? Lobes::FilterA : Lobes::History};
+  passes.push_back(temporalPass(temporalOut));
+  if (!filter) {
+    passes.push_back(compositePass(temporalOut));
+  } else {
+    addFilterPasses(passes, temporalOut, iterations, clamp, historyFiltered);
+    passes.push_back(resolvePass());
+    outputs.push_back("resolveHistory");
+  }
+  return PassList(listInputs(), outputs, std::move(passes));
+}
+
+void Denoiser::addFilterPasses(std::vector<PassDecl>& passes, Colour in, int iterations, bool clamp,
+                               bool historyFiltered) {
+  // The iterations ping-pong between two buffers holding neither stage 0 nor the history;
+  // last frame's history is one of them once the temporal pass has read it.
+  const bool inA = in.at == Lobes::FilterA;
+  const Lobes scratch[2] = {inA ? Lobes::FilterB : Lobes::FilterA,
+                            inA ? Lobes::PrevHistory : Lobes::FilterB};
+  if (clamp) {
+    const Colour out{"firefly", historyFiltered ? scratch[0] : Lobes::History};
+    passes.push_back(fireflyPass(in, out));
+    in = out;
+  }
+  for (int i = 0; i < iterations; ++i) {
+    const Lobes at = i == 0 && historyFiltered ? Lobes::History
+                     : in.at == scratch[0]     ? scratch[1]
+                                               : scratch[0];
+    const Colour out{"atrous" + std::to_string(i), at};
+    passes.push_back(atrousPass(i, i + 1 == iterations, in, out));
+    in = out;
+  }
+}
+
+namespace {
+
+// A pass writing a lobe pair also writes "history" when the pair is next frame's.
+std::vector<std::string> colourWrites(const std::string& name, bool isHistory,
+                                      std::vector<std::string> more = {}) {
+  more.insert(more.begin(), name);
+  if (isHistory) more.push_back("history");
+  return more;
+}
+
+}  // namespace
+
+PassDecl Denoiser::uploadPass() {
+  return {"upload", {}, {"noisy", "albedo", "unfiltered"}, [this] {
+            uploadUniforms(frameIn_.reset || !historyValid_);
+            upload(*frameIn_.eyes, eyeCount_);
+          }};
+}
+
+PassDecl Denoiser::temporalPass(const Colour& out) {
+  return {"temporal",
+          {"noisy", "gbuffer.visibility", "gbuffer.normal", "gbuffer.material", "gbuffer.motion",
+           "gbuffer.depth", "prev.geometry", "prev.aux", "prev.moments", "prev.history"},
+          colourWrites(out.name, out.at == Lobes::History, {"geometry", "aux", "moments"}),
+          [this, at = out.at] {
+            const std::array<GLuint, 2> o = lobes(at);
+            temporal(frameIn_.g, o[0], o[1]);
+            stages_[0][0] = o[0];
+            stages_[0][1] = o[1];
+          }};
+}
+
+PassDecl Denoiser::fireflyPass(const Colour& in, const Colour& out) {
+  return {"firefly",
+          {in.name, "geometry"},
+          colourWrites(out.name, out.at == Lobes::History),
+          [this, from = in.at, to = out.at] { firefly(lobes(from).data(), lobes(to).data()); }};
+}
+
+PassDecl Denoiser::atrousPass(int iteration, bool last, const Colour& in, const Colour& out) {
+  std::vector<std::string> reads = {in.name, "geometry", "aux"};
+  if (last) reads.insert(reads.end(), {"albedo", "unfiltered"});
+  const std::vector<std::string> composited =
+      last ? std::vector<std::string>{"composited"} : std::vector<std::string>{};
+  return {last ? "atrous+composite" : "atrous", reads,
+          colourWrites(out.name, out.at == Lobes::History, composited),
+          [this, iteration, from = in.at, to = out.at] {
+            const std::array<GLuint, 2> o = lobes(to);
+            atrous(iteration, lobes(from).data(), o.data());
+            stages_[iteration + 1][0] = o[0];
+            stages_[iteration + 1][1] = o[1];
+          }};
+}
+
+PassDecl Denoiser::compositePass(const Colour& in) {
+  return {"composite",
+          {in.name, "albedo", "unfiltered", "gbuffer.depth"},
+          {"linear", "display", "depth"},
+          [this, from = in.at] { composite(lobes(from).data(), frameIn_.g); }};
+}
+
+PassDecl Denoiser::resolvePass() {
+  return {"resolve",
+          {"composited", "prev.resolveHistory", "gbuffer.motion", "gbuffer.depth"},
+          {"resolveHistory", "linear", "display", "depth"},
+          [this] { resolve(frameIn_.g); }};
+}
+
+std::array<GLuint, 2> Denoiser::lobes(Lobes at) const {
+  const int cur = frame_ & 1;
+  switch (at) {
+    case Lobes::Noisy:
+      return {inputs_[InDiffuse], inputs_[InSpecular]};
+    case Lobes::History:
+      return {history_[cur][0], history_[cur][1]};
+    case Lobes::PrevHistory:
+      return {history_[cur ^ 1][0], history_[cur ^ 1][1]};
+    case Lobes::FilterA:
+      return {filterA_[0], filterA_[1]};
+    case Lobes::FilterB:
+      return {filterB_[0], filterB_[1]};
+  }
+  assert(false && "unknown Lobes");
+  return {};
+}
+
+// ---------------------------------------------------------------------------------------
+// The passes' GL work
 
 void Denoiser::upload(const std::array<NoisyEye, 2>& eyes, int eyeCount) {
   api::PixelStorei(GL_UNPACK_ALIGNMENT, 4);

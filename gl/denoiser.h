@@ -21,6 +21,9 @@
 //                              history (colour, sample count); writes the composite's outputs
 // 'full' fuses the composite into the last a-trous iteration and resolves it; 'temporal'
 // and 'off' run the composite alone (on the temporal output, resp. the raw input).
+// Each mode's passes are one PassList (gl/pass_list.h), declared in denoiser.cpp's
+// buildPasses with the resources each reads and writes, and rebuilt when the parameters
+// change; passes(mode) shows them.
 #pragma once
 
 #include <array>
@@ -29,6 +32,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/pass_list.h"
 #include "gl/program.h"
 
 namespace photovr::gl {
@@ -153,11 +157,6 @@ struct DenoiseGeometry {
 };
 DenoiseGeometry denoiseGeometry(const GBufferPass& gbuffer);
 
-struct PassTiming {
-  std::string name;
-  double ms;  // glFinish-bracketed wall time
-};
-
 class Denoiser {
  public:
   Denoiser(int eyeWidth, int eyeHeight, const DenoiseParams& params = {});
@@ -190,16 +189,42 @@ class Denoiser {
   unsigned linearTexture() const { return linear_; }    // RGBA16F
   unsigned depthTexture() const { return depth_; }      // R32F reversed-Z
 
-  void setParams(const DenoiseParams& params) { params_ = params; }
+  void setParams(const DenoiseParams& params);  // and rebuilds the pass lists
   const DenoiseParams& params() const { return params_; }
   // Per-pass wall times of the last run (glFinish before and after each pass) when on.
   void setTiming(bool on) { timing_ = on; }
   const std::vector<PassTiming>& timings() const { return timings_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  // What run() runs in 'mode' under the current parameters, in order.
+  const PassList& passes(DenoiseMode mode) const { return passes_[size_t(mode)]; }
 
  private:
   enum Input { InDiffuse, InSpecular, InDiffuseAlbedo, InSpecularAlbedo, InUnfiltered, InCount };
+  // Where a pair of lobe images (diffuse, specular) lives; History and PrevHistory by the
+  // frame's parity.
+  enum class Lobes { Noisy, History, PrevHistory, FilterA, FilterB };
+  struct Colour {  // a lobe pair as the pass list names it, and where it lives
+    std::string name;
+    Lobes at;
+  };
+  struct FrameIn {  // run()'s arguments, for the passes
+    DenoiseGeometry g;
+    const std::array<NoisyEye, 2>* eyes = nullptr;
+    bool reset = false;
+  };
+  void buildPasses();
+  PassList buildPasses(DenoiseMode mode);
+  void addFilterPasses(std::vector<PassDecl>& passes, Colour in, int iterations, bool clamp,
+                       bool historyFiltered);
+  PassDecl uploadPass();
+  PassDecl temporalPass(const Colour& out);
+  PassDecl fireflyPass(const Colour& in, const Colour& out);
+  PassDecl atrousPass(int iteration, bool last, const Colour& in, const Colour& out);
+  PassDecl compositePass(const Colour& in);
+  PassDecl resolvePass();
+  std::array<unsigned, 2> lobes(Lobes at) const;
+
   void upload(const std::array<NoisyEye, 2>& eyes, int eyeCount);
   void uploadUniforms(bool reset);
   void temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned outSpecular);
@@ -210,8 +235,6 @@ class Denoiser {
   void bindCompositeInputs() const;
   void bindOutputs(const DenoiseGeometry& g) const;
   void dispatch() const;
-  template <typename F>
-  void timed(const char* name, F&& pass);
 
   int width_, height_;
   DenoiseParams params_;
@@ -233,6 +256,8 @@ class Denoiser {
   bool historyValid_ = false;
   bool timing_ = false;
   std::vector<PassTiming> timings_;
+  FrameIn frameIn_;
+  std::array<PassList, 3> passes_;  // by DenoiseMode
 };
 
 }  // namespace photovr::gl

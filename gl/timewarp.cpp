@@ -65,6 +65,7 @@ Timewarp::Timewarp(const LensParams& lens, int eyeWidth, int eyeHeight,
   eyeColor_ = makeArrayTexture(GL_RGBA16F, eyeWidth, eyeHeight, 2);
   eyeDepth_ = makeArrayTexture(GL_R32F, eyeWidth, eyeHeight, 2);
   buildLensTable(lens, eyeFov);
+  buildPasses();
 }
 
 Timewarp::~Timewarp() {
@@ -147,25 +148,78 @@ void Timewarp::setUniforms(const std::array<EyeCamera, 2>& from, const std::arra
   api::BindBufferBase(GL_SHADER_STORAGE_BUFFER, COMP_TW_STATS, stats_);
 }
 
-void Timewarp::prepareSearch(unsigned depthArray, const std::array<EyeCamera, 2>& from,
-                             int eyeCount) {
+// ---------------------------------------------------------------------------------------
+// The pass lists: the search bounds (tile minima and maxima of A's depth, then their 3x3
+// extremes) before the passes that search.
+
+void Timewarp::buildPasses() {
+  const std::vector<std::string> in = {"color", "depth", "lensTable", "lensGroups"};
+  passes_[size_t(TimewarpRun::Panel)] =
+      PassList(in, {"panel", "stats"}, {tilePass(0), tilePass(1), panelPass(TimewarpRun::Panel)});
+  passes_[size_t(TimewarpRun::PanelAsRendered)] =
+      PassList(in, {"panel", "stats"}, {panelPass(TimewarpRun::PanelAsRendered)});
+  passes_[size_t(TimewarpRun::PanelFloor)] =
+      PassList(in, {"panel"}, {panelPass(TimewarpRun::PanelFloor)});
+  passes_[size_t(TimewarpRun::Eyes)] = PassList(
+      {"color", "depth"}, {"eyeColor", "eyeDepth", "stats"}, {tilePass(0), tilePass(1), eyePass()});
+}
+
+PassDecl Timewarp::tilePass(int pass) {
+  if (pass == 0) return {"tileRange", {"depth"}, {"tileRange"}, [this] { runTiles(0); }};
+  return {"tileBound", {"tileRange"}, {"tileBound"}, [this] { runTiles(1); }};
+}
+
+PassDecl Timewarp::panelPass(TimewarpRun run) {
+  if (run == TimewarpRun::PanelAsRendered)  // the frame's depth unread
+    return {"panelAsRendered", {"color", "lensTable", "lensGroups"}, {"panel", "stats"}, [this] {
+              bindColor(frameIn_.color);
+              drawPanel(asRenderedProgram_, *frameIn_.out);
+            }};
+  if (run == TimewarpRun::PanelFloor)  // no search, no origins counted
+    return {"panelFloor", {"color", "depth", "lensTable", "lensGroups"}, {"panel"}, [this] {
+              api::BindTextureUnit(COMP_TW_DEPTH, frameIn_.depth);
+              bindColor(frameIn_.color);
+              drawPanel(*floorProgram_, *frameIn_.out);
+            }};
+  return {"panel",
+          {"color", "depth", "tileBound", "lensTable", "lensGroups"},
+          {"panel", "stats"},
+          [this] {
+            bindSearch(frameIn_.depth);
+            bindColor(frameIn_.color);
+            drawPanel(panelProgram_, *frameIn_.out);
+          }};
+}
+
+PassDecl Timewarp::eyePass() {
+  return {"eyes", {"color", "depth", "tileBound"}, {"eyeColor", "eyeDepth", "stats"}, [this] {
+            bindSearch(frameIn_.depth);
+            bindColor(frameIn_.color);
+            drawEyes(frameIn_.eyeCount);
+          }};
+}
+
+void Timewarp::checkSearch(const std::array<EyeCamera, 2>& from, int eyeCount) const {
   for (int e = 0; e < eyeCount; ++e)
     if (from[e].zfar != 0.0f) throw UsageError("timewarp: pose A needs infinite reversed-Z");
   if (!(params_.stepPixels > 0.0f) || params_.maxSteps < 1 || params_.maxSteps > 1024)
     throw UsageError("timewarp: step must be positive and max steps in [1, 1024]");
-  // The search bounds: tile minima and maxima of A's depth, then their 3x3 extremes.
+}
+
+// Pass 0: per-tile depth range of A's depth; pass 1: its 3x3 extremes.
+void Timewarp::runTiles(int pass) {
   tileProgram_.use();
   api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // clamp to edge for the tiles' gathers
-  const GLuint tileSources[2] = {depthArray, tileRange_}, tileTargets[2] = {tileRange_, tileBound_};
-  for (int pass = 0; pass < 2; ++pass) {
-    tileProgram_.set("uPass", pass);
-    api::BindTextureUnit(COMP_TW_DEPTH, tileSources[pass]);
-    api::BindImageTexture(COMP_TW_I_TILES, tileTargets[pass], 0, GL_TRUE, 0, GL_WRITE_ONLY,
-                          GL_RG32F);
-    api::DispatchCompute(groups(tiles_.x, COMP_TW_GROUP), groups(tiles_.y, COMP_TW_GROUP),
-                         GLuint(eyeCount));
-    api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-  }
+  tileProgram_.set("uPass", pass);
+  api::BindTextureUnit(COMP_TW_DEPTH, pass == 0 ? frameIn_.depth : tileRange_);
+  api::BindImageTexture(COMP_TW_I_TILES, pass == 0 ? tileRange_ : tileBound_, 0, GL_TRUE, 0,
+                        GL_WRITE_ONLY, GL_RG32F);
+  api::DispatchCompute(groups(tiles_.x, COMP_TW_GROUP), groups(tiles_.y, COMP_TW_GROUP),
+                       GLuint(frameIn_.eyeCount));
+  api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void Timewarp::bindSearch(unsigned depthArray) {
   api::BindTextureUnit(COMP_TW_DEPTH, depthArray);
   api::BindSampler(COMP_TW_DEPTH, linearSampler_);  // for textureGather's clamp to edge
   api::BindTextureUnit(COMP_TW_TILES, tileBound_);
@@ -186,9 +240,9 @@ void Timewarp::runPanel(unsigned colorArray, unsigned depthArray,
                         float exposure, PanelOutput& out) {
   checkPanel(out);
   setUniforms(from, to, 2, exposure, out.rotation());
-  prepareSearch(depthArray, from, 2);
-  bindColor(colorArray);
-  drawPanel(panelProgram_, out);
+  checkSearch(from, 2);
+  frameIn_ = {colorArray, depthArray, &out, 2};
+  passes_[size_t(TimewarpRun::Panel)].run();
 }
 
 void Timewarp::runPanelFloor(unsigned colorArray, unsigned depthArray,
@@ -199,17 +253,16 @@ void Timewarp::runPanelFloor(unsigned colorArray, unsigned depthArray,
         std::vector<std::string>{});
   checkPanel(out);
   setUniforms(at, at, 2, 1.0f, out.rotation());
-  api::BindTextureUnit(COMP_TW_DEPTH, depthArray);
-  bindColor(colorArray);
-  drawPanel(*floorProgram_, out);
+  frameIn_ = {colorArray, depthArray, &out, 2};
+  passes_[size_t(TimewarpRun::PanelFloor)].run();
 }
 
 void Timewarp::runPanelAsRendered(unsigned colorArray, const std::array<EyeCamera, 2>& at,
                                   float exposure, PanelOutput& out) {
   checkPanel(out);
   setUniforms(at, at, 2, exposure, out.rotation());
-  bindColor(colorArray);
-  drawPanel(asRenderedProgram_, out);
+  frameIn_ = {colorArray, 0, &out, 2};
+  passes_[size_t(TimewarpRun::PanelAsRendered)].run();
 }
 
 void Timewarp::checkPanel(const PanelOutput& out) {
@@ -234,12 +287,7 @@ void Timewarp::drawPanel(const Program& program, PanelOutput& out) {
   unbindSamplers();
 }
 
-void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
-                       const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
-                       int eyeCount) {
-  setUniforms(from, to, eyeCount, 1.0f, 0);
-  prepareSearch(depthArray, from, eyeCount);
-  bindColor(colorArray);
+void Timewarp::drawEyes(int eyeCount) {
   counted_ = {eyeWidth_ * eyeHeight_, eyeCount > 1 ? eyeWidth_ * eyeHeight_ : 0};
   eyeProgram_.use();
   api::BindImageTexture(COMP_TW_I_OUT, eyeColor_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -249,6 +297,15 @@ void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
   api::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                      GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   unbindSamplers();
+}
+
+void Timewarp::runEyes(unsigned colorArray, unsigned depthArray,
+                       const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
+                       int eyeCount) {
+  setUniforms(from, to, eyeCount, 1.0f, 0);
+  checkSearch(from, eyeCount);
+  frameIn_ = {colorArray, depthArray, nullptr, eyeCount};
+  passes_[size_t(TimewarpRun::Eyes)].run();
 }
 
 std::vector<glm::vec4> Timewarp::readColor(int eye) const {

@@ -27,6 +27,7 @@
 #include "core/camera.h"
 #include "gl/compositor.h"
 #include "gl/panel_output.h"
+#include "gl/pass_list.h"
 #include "gl/program.h"
 
 namespace photovr::gl {
@@ -36,6 +37,9 @@ struct TimewarpParams {
   float stepPixels = 1.0f;   // march step along the ray's segment in A's image
   int maxSteps = 32;         // longer segments take longer steps
 };
+
+// Timewarp's entry points, each one PassList (passes()).
+enum class TimewarpRun { Panel, PanelAsRendered, PanelFloor, Eyes };
 
 class Timewarp {
  public:
@@ -77,14 +81,29 @@ class Timewarp {
   void setShownField(const std::array<FovTangents, 2>& field) { field_ = field; }
   int eyeWidth() const { return eyeWidth_; }
   int eyeHeight() const { return eyeHeight_; }
+  // The passes of each entry point, in order, with what they read and write (textures and
+  // buffers by name; the lens table and groups are made before, the uniforms by each run).
+  const PassList& passes(TimewarpRun run) const { return passes_[size_t(run)]; }
 
  private:
+  struct FrameIn {  // the running entry point's arguments, for the passes
+    unsigned color = 0, depth = 0;
+    PanelOutput* out = nullptr;
+    int eyeCount = 2;
+  };
+  void buildPasses();
+  PassDecl tilePass(int pass);
+  PassDecl panelPass(TimewarpRun run);
+  PassDecl eyePass();
   void setUniforms(const std::array<EyeCamera, 2>& from, const std::array<EyeCamera, 2>& to,
                    int eyeCount, float exposure, int rotation);
-  void prepareSearch(unsigned depthArray, const std::array<EyeCamera, 2>& from, int eyeCount);
+  void checkSearch(const std::array<EyeCamera, 2>& from, int eyeCount) const;
+  void runTiles(int pass);
+  void bindSearch(unsigned depthArray);
   void bindColor(unsigned colorArray);
   void checkPanel(const PanelOutput& out);
   void drawPanel(const Program& program, PanelOutput& out);
+  void drawEyes(int eyeCount);
   void unbindSamplers();
   void buildLensTable(const LensParams& lens, const std::array<FovTangents, 2>& eyeFov);
   // The list of output groups (COMP_TW_GROUP squared texels) showing a pixel the lens sees,
@@ -105,6 +124,8 @@ class Timewarp {
   int lensGroupCount_ = 0, lensGroupRotation_ = -1;
   std::array<int, 2> counted_{};  // outputs the last run sorted by origin, per eye
   unsigned lensTable_ = 0, tileRange_ = 0, tileBound_ = 0, eyeColor_ = 0, eyeDepth_ = 0;
+  FrameIn frameIn_;
+  std::array<PassList, 4> passes_;  // by TimewarpRun
 };
 
 }  // namespace photovr::gl

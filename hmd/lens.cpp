@@ -35,6 +35,13 @@ double inverseRadius(const LensDistortion& lens, double target, Channel c) {
   return r;
 }
 
+// Through memory: GCC 12 at -O2 can drop the rounding of a plain double(float(x))
+// (docs/ARCHITECTURE.md, "Tests: what guards what").
+double roundedToFloat(double x) {
+  volatile float f = float(x);
+  return f;
+}
+
 }  // namespace
 
 LensDistortion LensDistortion::dk2Default(double eyeReliefM) {
@@ -90,6 +97,30 @@ glm::dvec2 lensCentre(const PanelGeometry& p, Eye eye) {
 glm::dvec2 screenToLensScale(const LensModel& m) {
   return {0.25 * m.panel.widthM / m.lens.metresPerTanAngle,
           0.5 * m.panel.heightM / m.lens.metresPerTanAngle};
+}
+
+LensParams flattenLens(const LensModel& m) {
+  // The panel's lengths rounded to float first, the derived values then from them: what
+  // gl/ computed itself before this function (centre.x and scale.x are one float ulp
+  // apart from the rounded double-length values on the DK2), so no image changed.
+  LensModel f = m;
+  for (double* v : {&f.lens.metresPerTanAngle, &f.panel.widthM, &f.panel.heightM,
+                    &f.panel.verticalCentreM, &f.panel.lensSeparationM})
+    *v = roundedToFloat(*v);
+  LensParams p;
+  for (size_t i = 0; i < p.k.size(); ++i) p.k[i] = float(m.lens.k[i]);
+  p.maxR = float(m.lens.maxR);
+  p.metresPerTanAngle = float(f.lens.metresPerTanAngle);
+  for (size_t i = 0; i < p.chroma.size(); ++i) p.chroma[i] = float(m.lens.chroma[i]);
+  p.panelWidthM = float(f.panel.widthM);
+  p.panelHeightM = float(f.panel.heightM);
+  p.verticalCentreM = float(f.panel.verticalCentreM);
+  p.lensSeparationM = float(f.panel.lensSeparationM);
+  p.hResolution = m.panel.hResolution;
+  p.vResolution = m.panel.vResolution;
+  for (Eye e : {Eye::Left, Eye::Right}) p.lensCentre[int(e)] = glm::vec2(lensCentre(f.panel, e));
+  p.screenToLensScale = glm::vec2(screenToLensScale(f));
+  return p;
 }
 
 glm::dvec2 screenToLens(const LensModel& m, Eye eye, const glm::dvec2& screen) {

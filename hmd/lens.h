@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
+#include "core/lens_params.h"
 #include "hmd/feature_reports.h"
 
 namespace photovr::hmd {
@@ -54,6 +55,10 @@ double radialScale(const LensDistortion& lens, double rsq, Channel c);
 
 glm::dvec2 lensCentre(const PanelGeometry& panel, Eye eye);  // screen NDC; left ~(-0.00986, 0)
 glm::dvec2 screenToLensScale(const LensModel& m);  // d = (p - c) * this; DK2 (0.8733, 0.9825)
+
+// The model as gl/ takes it (core/lens_params.h): every field in float, with lensCentre
+// and screenToLensScale as above, rounded to float.
+LensParams flattenLens(const LensModel& m);
 
 // Lens-space offset d of a screen point; |d| <= maxR is inside the calibrated lens.
 glm::dvec2 screenToLens(const LensModel& m, Eye eye, const glm::dvec2& screen);

@@ -102,7 +102,7 @@ TEST(Compositor, DistortionSamplesTheLensModelAndItsVisibleArea) {
     r.upload(e, color[e].data(), depth.data());
   }
   r.run(cams, cams);
-  gl::Distorter d(gl::lensParamsOf(m), ew, eh, fov);
+  gl::Distorter d(hmd::flattenLens(m), ew, eh, fov);
   for (int e = 0; e < 2; ++e) {
     const glm::vec2 c = d.lensCentre(e);
     const glm::dvec2 ref = hmd::lensCentre(m.panel, Eye(e));

@@ -35,7 +35,7 @@ gl::LensParams smallPanel() {
   hmd::LensModel m;
   m.panel.hResolution = 192;  // a DK2 panel at 1/10 resolution, same optics
   m.panel.vResolution = 108;
-  return gl::lensParamsOf(m);
+  return hmd::flattenLens(m);
 }
 
 std::array<FovTangents, 2> dk2Fov() {
