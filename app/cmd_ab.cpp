@@ -6,23 +6,26 @@
 #include <iostream>
 #include <utility>
 
-#include "app/gl_context.h"
+#include "gl/render_context.h"
 #include "core/files.h"
 #include "core/options.h"
-#include "app/reference_cache.h"
+#include "harness/reference_cache.h"
 #include "app/render_request.h"
-#include "app/trace_output.h"
+#include "trace/trace_output.h"
 #include "core/error.h"
 #include "core/error_metrics.h"
 #include "core/heatmap.h"
 #include "core/scene_transform.h"
 #include "core/stopwatch.h"
-#include "hybrid/hybrid_renderer.h"
-#include "trace/pixel_estimate.h"
+#include "hmd/headset_description.h"
+#include "hybrid/frame_pipeline.h"
 #include "trace/primary_rays.h"
 
 namespace photovr::app {
 namespace {
+
+using harness::loadOrRenderReference;
+using harness::Reference;
 
 const char* const kAbHelp =
     "usage: photovr ab [options]\n"
@@ -83,14 +86,23 @@ struct PipelineTimes {
   double sequentialMs = 0.0, pipelinedMs = 0.0, waitMs = 0.0;
 };
 
-PipelineTimes measurePipeline(HybridRenderer& renderer, const RenderRequest& r, int eyeCount) {
+FrameRequest requestOf(const RenderRequest& r, int eyeCount, uint32_t f, FrameMode mode) {
+  FrameRequest q{eyeCameras(r.view, r.width, r.height, f, r.sampler), eyeCount, f,
+                 frameSettingsOf(r)};
+  q.settings.mode = mode;
+  return q;
+}
+
+PipelineTimes measurePipeline(FramePipeline& pipeline, const RenderRequest& r, int eyeCount) {
   PipelineTimes p;
-  auto cameras = [&](uint32_t f) { return eyeCameras(r.view, r.width, r.height, f, r.sampler); };
+  auto requests = [&](uint32_t f) { return requestOf(r, eyeCount, f, FrameMode::Hybrid); };
   for (int pipelined = 0; pipelined < 2; ++pipelined) {
-    HybridFrameTimes t;
+    FrameTimes t;
     const auto t0 = Clock::now();
-    renderer.renderSequence(
-        cameras, 4, eyeCount, pipelined == 1, [](uint32_t, std::array<EyeImage, 2>&) {}, &t);
+    pipeline.renderSequence(
+        requests, 4,
+        pipelined ? FramePipeline::Scheduling::Pipelined : FramePipeline::Scheduling::Sequential,
+        [](StereoFrame&) {}, &t);
     (pipelined ? p.pipelinedMs : p.sequentialMs) = msSince(t0);
     if (pipelined) p.waitMs = t.gbufferMs;
   }
@@ -100,49 +112,43 @@ PipelineTimes measurePipeline(HybridRenderer& renderer, const RenderRequest& r, 
 struct ModeResult {
   std::vector<EyeImage> eyes;
   double wallMs = 0.0, cpuMs = 0.0, primaryMs = 0.0;
-  HybridFrameTimes stages;
+  FrameTimes stages;
   uint64_t rays = 0;
   double relMse = 0.0, psnr = 0.0;
 };
 
-ModeResult runHybrid(HybridRenderer& renderer, const RenderRequest& r, int eyeCount) {
+ModeResult runHybrid(FramePipeline& pipeline, const RenderRequest& r, int eyeCount) {
   ModeResult m;
   m.eyes.resize(eyeCount);
   // Warm-up: shader compilation, and the first touch of the storage every frame reuses.
-  renderer.recycle(
-      renderer.render(eyeCameras(r.view, r.width, r.height, 0, r.sampler), eyeCount, 0, nullptr));
+  pipeline.recycle(pipeline.render(requestOf(r, eyeCount, 0, FrameMode::Hybrid)));
   for (int f = 0; f < r.frames; ++f) {
-    HybridFrameTimes t;
-    auto out = renderer.render(eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler),
-                               eyeCount, uint32_t(f), &t);
-    for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], out[e], f);
-    renderer.recycle(std::move(out));
-    m.stages.gbufferMs += t.gbufferMs, m.stages.readbackMs += t.readbackMs;
-    m.stages.rebuildMs += t.rebuildMs, m.stages.traceMs += t.traceMs;
-    m.stages.outsideHits += t.outsideHits;
-    m.rays += t.rays;
+    StereoFrame frame = pipeline.render(requestOf(r, eyeCount, uint32_t(f), FrameMode::Hybrid));
+    for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], frame.images[e], f);
+    m.stages.add(frame.times);
+    m.rays += frame.times.rays;
+    pipeline.recycle(std::move(frame));
   }
   m.wallMs = m.stages.totalMs();
   m.cpuMs = m.stages.cpuMs();
   return m;
 }
 
-ModeResult runPathTraced(const TraceContext& ctx, const RenderRequest& r, int eyeCount) {
+ModeResult runPathTraced(FramePipeline& pipeline, const RenderRequest& r, int eyeCount) {
   ModeResult m;
   m.eyes.resize(eyeCount);
-  std::array<EyeImage, 2> last;  // traced into, touched once untimed as the hybrid's warm-up
-  for (int e = 0; e < eyeCount; ++e) allocateEyeImage(last[e], r.width, r.height);
+  const TraceContext& ctx = pipeline.traceContext();
+  // Warm-up, as the hybrid's: the first touch of the storage every frame is traced into.
+  pipeline.recycle(pipeline.render(requestOf(r, eyeCount, 0, FrameMode::PathTraced)));
   for (int f = 0; f < r.frames; ++f) {
-    const auto eyes = eyeCameras(r.view, r.width, r.height, uint32_t(f), r.sampler);
-    for (int e = 0; e < eyeCount; ++e) {
-      m.primaryMs += timePrimaryRays(ctx.scene, ctx.embree, eyes[e]).milliseconds;
-      const auto t0 = Clock::now();
-      EyeImage& img = last[e];
-      img = renderPathTraced(ctx, eyes[e], uint32_t(e), uint32_t(f), std::move(img));
-      m.wallMs += msSince(t0);
-      m.rays += img.rays;
-      accumulate(m.eyes[e], img, f);
-    }
+    const FrameRequest q = requestOf(r, eyeCount, uint32_t(f), FrameMode::PathTraced);
+    for (int e = 0; e < eyeCount; ++e)
+      m.primaryMs += timePrimaryRays(ctx.scene, ctx.embree, q.eyes[e]).milliseconds;
+    StereoFrame frame = pipeline.render(q);
+    for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], frame.images[e], f);
+    m.wallMs += frame.times.traceMs;
+    m.rays += frame.times.rays;
+    pipeline.recycle(std::move(frame));
   }
   m.cpuMs = m.wallMs;
   return m;
@@ -214,16 +220,13 @@ int runAb(const Args& args) {
   const int eyeCount = r.view.stereo ? 2 : 1;
   const Reference ref =
       loadOrRenderReference({&r.scene, r.view, r.width, r.height, r.bounces}, a.referenceSpp);
-  auto context = createRenderContext(r.backend);
-  TraceSettings settings;
-  settings.samplesPerPixel = r.spp;
-  settings.maxBounces = r.bounces;
-  settings.seed = r.seed;
-  HybridRenderer renderer(r.scene, r.width, r.height,
-                          context->hasExtension("GL_ARB_shader_viewport_layer_array"), settings);
-  ModeResult hy = runHybrid(renderer, r, eyeCount);
-  ModeResult pt = runPathTraced(renderer.traceContext(), r, eyeCount);
-  const PipelineTimes pipe = measurePipeline(renderer, r, eyeCount);
+  auto context = gl::createRenderContext(r.backend);
+  PipelineConfig config;
+  config.layout = hmd::HeadsetDescription::dk2().layout(r.width, r.height);
+  FramePipeline pipeline(r.scene, config, context.get());
+  ModeResult hy = runHybrid(pipeline, r, eyeCount);
+  ModeResult pt = runPathTraced(pipeline, r, eyeCount);
+  const PipelineTimes pipe = measurePipeline(pipeline, r, eyeCount);
   score(hy, ref, r.exposure);
   score(pt, ref, r.exposure);
   std::vector<const EyeImage*> hp, pp;

@@ -3,12 +3,13 @@
 #include <unistd.h>
 
 #include "app/hmd_sequence.h"
-#include "app/memory.h"
+#include "core/memory.h"
 #include "app/render_request.h"
 #include "core/error.h"
 #include "core/files.h"
 #include "core/options.h"
 #include "core/scene_transform.h"
+#include "hmd/headset_description.h"
 
 namespace photovr::app {
 
@@ -72,10 +73,14 @@ RenderRequest parseRenderRequest(const Args& args) {
     throw UsageError("render: unexpected argument '" + o.positional()[0] + "'");
   RenderRequest r;
   r.sceneSpec = o.text("--scene", "atrium");
-  r.mode = o.choice("--mode", "hybrid", {"hybrid", "pt", "gbuffer"});
+  const std::string mode = o.choice("--mode", "hybrid", {"hybrid", "pt", "gbuffer"});
+  r.mode = mode == "pt"        ? RenderMode::PathTraced
+           : mode == "gbuffer" ? RenderMode::GBuffer
+                               : RenderMode::Hybrid;
   r.backend = o.text("--backend", "");
-  r.width = o.integer("--width", kDk2EyeWidth, 1, 8192);
-  r.height = o.integer("--height", kDk2EyeHeight, 1, 8192);
+  const hmd::HeadsetDescription headset = hmd::HeadsetDescription::dk2();
+  r.width = o.integer("--width", headset.eyeWidth, 1, 8192);
+  r.height = o.integer("--height", headset.eyeHeight, 1, 8192);
   checkFrameFitsInMemory(r.width, r.height, "--width/--height");
   r.spp = o.integer("--spp", 1, 1, 65536);
   r.bounces = o.integer("--bounces", 8, 0, 64);
@@ -84,16 +89,16 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.sampler = o.choice("--sampler", "sobol", {"sobol", "random"}) == "random" ? SamplerKind::Random
                                                                               : SamplerKind::Sobol;
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
-  r.denoise = o.choice("--denoise", "off", {"off", "temporal", "full"});
-  r.sampling =
-      o.choice("--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"});
+  r.denoise = gl::parseDenoiseMode(o.choice("--denoise", "off", {"off", "temporal", "full"}));
+  r.sampling = parseSampleMapKind(o.choice(
+      "--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"}));
   r.converge = o.number("--converge", 0.0f, 0.0f, 1.0f);
   try {
     r.skips.disable(o.text("--no-skip", ""));
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--no-skip: ") + e.what());
   }
-  if (r.denoise != "off" && r.mode == "gbuffer")
+  if (r.denoise != gl::DenoiseMode::Off && r.mode == RenderMode::GBuffer)
     throw UsageError("--denoise: needs a traced mode (hybrid or pt)");
   r.outDir = o.text("--out", defaultOutDir(r.sceneSpec));
   createOutputFolder(r.outDir);
@@ -101,16 +106,13 @@ RenderRequest parseRenderRequest(const Args& args) {
   applyEnvironmentOption(r.scene, o.text("--env", ""));
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
-  if (r.sampling != "uniform" && (r.mode != "hybrid" || !r.view.stereo))
+  if (r.sampling != SampleMapKind::Uniform && (r.mode != RenderMode::Hybrid || !r.view.stereo))
     throw UsageError("--sampling: lens-based sample maps need --mode hybrid and --eyes stereo");
   return r;
 }
 
-void reportProgress(double fraction, double raysPerSecond, double secondsLeft) {
-  if (!isatty(STDERR_FILENO)) return;
-  std::fprintf(stderr, "\r  %5.1f %%  %7.2f Mrays/s  %6.1f s left ", 100.0 * fraction,
-               raysPerSecond * 1e-6, secondsLeft);
-  if (fraction >= 1.0) std::fprintf(stderr, "\n");
+const char* renderModeName(RenderMode mode) {
+  return mode == RenderMode::GBuffer ? "gbuffer" : mode == RenderMode::PathTraced ? "pt" : "hybrid";
 }
 
 int runRender(const Args& args) {
@@ -127,9 +129,8 @@ int runRender(const Args& args) {
       throw UsageError("--converge: not with --hmd (the head moves, so frames do not converge)");
     return renderHmdSequence(request, hmd, sequence);
   }
-  if (request.mode == "pt") return renderPathTracedMode(request);
-  if (request.mode == "gbuffer") return renderGBufferMode(request);
-  return renderHybridMode(request);
+  if (request.mode == RenderMode::GBuffer) return renderGBufferMode(request);
+  return renderTracedMode(request);
 }
 
 }  // namespace photovr::app

@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "app/commands.h"
-#include "app/gl_context.h"
+#include "gl/render_context.h"
 #include "core/options.h"
 #include "core/error.h"
 #include "hybrid/stress.h"
@@ -23,7 +23,7 @@ int runStress(const Args& args) {
   const Options o(args, {"--backend"}, {"--quick"});
   if (!o.positional().empty())
     throw UsageError("stress: unexpected argument '" + o.positional()[0] + "'");
-  auto context = createRenderContext(o.text("--backend", ""));
+  auto context = gl::createRenderContext(o.text("--backend", ""));
   const auto results = runStressSuite(o.has("--quick"));
   std::cout << formatStressReport(results);
   for (const StressResult& r : results)

@@ -1,12 +1,12 @@
 // photovr view: the interactive app. A window shows the headset's panel image; the renderer
-// (view_renderer.h) makes frames at its own rate while every display refresh re-projects
-// the newest finished frame to the newest head pose, distorts it for the DK2's lenses and
-// draws the Dear ImGui overlay on top.
+// (hybrid/frame_pipeline.h, its background worker) makes frames at its own rate while every display
+// refresh re-projects the newest finished frame to the newest head pose, distorts it for the DK2's
+// lenses and draws the Dear ImGui overlay on top.
 //
 // Clocks: the DK2 and a live replay report poses on the host clock (hmd::hostSeconds);
 // a pose script runs from the moment the window opens. Frames start at the pose of "now";
-// each refresh is shown at the pose predicted kDisplayLatency ahead (dk2.md §4: LibOVR's
-// prediction target, mid-scan-out, ~20.9 ms after present).
+// each refresh is shown at the pose predicted the headset's display latency ahead
+// (hmd/headset_description.h; DK2: LibOVR's mid-scan-out target, 20.9 ms after present).
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -16,26 +16,25 @@
 
 #include "app/commands.h"
 #include "app/headset.h"
-#include "app/memory.h"
+#include "display/compositor.h"
+#include "display/output.h"
+#include "hmd/headset_description.h"
+#include "core/memory.h"
 #include "core/files.h"
 #include "core/options.h"
-#include "app/view.h"
+#include "core/view.h"
 #include "app/view_overlay.h"
-#include "app/view_renderer.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/scene_transform.h"
 #include "core/stopwatch.h"
-#include "gl/denoiser.h"
 #include "gl/headset_monitor.h"
 #include "gl/window_input.h"
 #include "hmd/dk2_driver.h"
-#include "hybrid/denoise_input.h"
+#include "hybrid/frame_pipeline.h"
 
 namespace photovr::app {
 namespace {
-
-constexpr double kDisplayLatency = 0.0209;
 
 const char* const kViewCommandHelp =
     "usage: photovr view [options]\n"
@@ -74,14 +73,14 @@ glm::ivec2 parseSize(const Options& o, const std::string& name, glm::ivec2 fallb
 }
 
 struct ViewConfig {
+  hmd::HeadsetDescription headset = hmd::HeadsetDescription::dk2();
   Scene scene;
   View view;
   HmdSpec hmd;
   int width = 320, height = 360, rotation = 0, frames = 0;
   StereoLayout eyes;  // width x height over the lens's field, plus the overscan
   glm::ivec2 window{960, 540}, panel{0, 0};
-  FrameSettings settings;
-  int denoise = 2;  // index into kDenoiseModes
+  FrameSettings settings;  // mode, spp, bounces, sample map, denoiser; seed 0, Sobol
   bool reproject = true, overlay = true, rotationGiven = false;
   float exposure = 1.0f;
   std::string outDir = ".", screenshot;
@@ -104,19 +103,20 @@ ViewConfig parseViewConfig(Args args) {
   c.width = o.integer("--width", 320, 8, 4096);
   c.height = o.integer("--height", 360, 8, 4096);
   c.eyes =
-      StereoLayout::dk2(c.width, c.height, glm::radians(o.number("--overscan", 0.0f, 0.0f, 10.0f)));
+      c.headset.layout(c.width, c.height, glm::radians(o.number("--overscan", 0.0f, 0.0f, 10.0f)));
   checkFrameFitsInMemory(c.eyes.width, c.eyes.height, "--width/--height");
   c.window = parseSize(o, "--window", c.window);
   c.panel = parseSize(o, "--panel", {0, 0});
   if (c.panel.x % 2) throw UsageError("--panel: the width must be even (two eyes)");
   c.rotation = std::stoi(o.choice("--rotate", "0", {"0", "90", "180", "270"}));
   c.rotationGiven = o.has("--rotate");
-  c.settings.pathTraced = o.choice("--mode", "hybrid", {"hybrid", "pt"}) == "pt";
+  c.settings.mode = o.choice("--mode", "hybrid", {"hybrid", "pt"}) == "pt" ? FrameMode::PathTraced
+                                                                           : FrameMode::Hybrid;
   c.settings.spp = o.integer("--spp", 1, 1, 64);
   c.settings.bounces = o.integer("--bounces", 4, 0, 16);
-  c.settings.lensMatched =
-      o.choice("--sampling", "uniform", {"uniform", "lens-matched"}) == "lens-matched";
-  c.denoise = int(gl::parseDenoiseMode(o.text("--denoise", "full")));
+  c.settings.sampleMap =
+      parseSampleMapKind(o.choice("--sampling", "uniform", {"uniform", "lens-matched"}));
+  c.settings.denoise = gl::parseDenoiseMode(o.text("--denoise", "full"));
   c.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   c.reproject = !o.has("--no-reproject");
   c.overlay = !o.has("--no-overlay");
@@ -171,7 +171,8 @@ hmd::DesktopInput desktopInput(const gl::WindowInput& in, float dt) {
 // What the overlay shows, smoothed where it jitters.
 struct Stats {
   double displayMs = 0.0, compositorMs = 0.0, denoiseMs = 0.0;
-  FinishedFrame last;  // images dropped; times and settings kept
+  FrameRequest last;  // of the last frame shown, and its stage times
+  FrameTimes lastTimes;
   double meanSpp = 0.0;
   int rendered = 0;
 };
@@ -190,18 +191,22 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
                    ImGuiWindowFlags_NoSavedSettings);
   ImGui::Text("display %.1f ms (%.0f Hz), compositor %.1f ms", s.displayMs,
               s.displayMs > 0 ? 1e3 / s.displayMs : 0.0, s.compositorMs);
-  const FinishedFrame& f = s.last;
-  ImGui::Text("frame %u (%d done): %.0f ms", f.index, s.rendered, f.totalMs + s.denoiseMs);
-  ImGui::Text("  G-buffer %.1f, read-back %.1f, trace %.1f, denoise %.1f ms", f.gbufferMs,
-              f.readbackMs, f.traceMs, s.denoiseMs);
-  ImGui::Text("  %s, %.2f spp mean, %d bounces", f.settings.pathTraced ? "pt" : "hybrid", s.meanSpp,
-              f.settings.bounces);
-  int mode = c.settings.pathTraced ? 1 : 0;
-  if (ImGui::Combo("mode", &mode, kModes, 2)) c.settings.pathTraced = mode == 1;
+  const FrameTimes& t = s.lastTimes;
+  ImGui::Text("frame %u (%d done): %.0f ms", s.last.index, s.rendered, t.totalMs() + s.denoiseMs);
+  ImGui::Text("  G-buffer %.1f, read-back %.1f, trace %.1f, denoise %.1f ms", t.gbufferMs,
+              t.readbackMs, t.rebuildMs + t.traceMs, s.denoiseMs);
+  ImGui::Text("  %s, %.2f spp mean, %d bounces", frameModeName(s.last.settings.mode), s.meanSpp,
+              s.last.settings.bounces);
+  int mode = int(c.settings.mode);
+  if (ImGui::Combo("mode", &mode, kModes, 2)) c.settings.mode = FrameMode(mode);
   ImGui::SliderInt("spp", &c.settings.spp, 1, 64);
   ImGui::SliderInt("bounces", &c.settings.bounces, 0, 16);
-  ImGui::Combo("denoiser", &c.denoise, kDenoiseModes, 3);
-  ImGui::Checkbox("lens-matched sampling (hybrid)", &c.settings.lensMatched);
+  int denoise = int(c.settings.denoise);
+  if (ImGui::Combo("denoiser", &denoise, kDenoiseModes, 3))
+    c.settings.denoise = gl::DenoiseMode(denoise);
+  bool lensMatched = c.settings.sampleMap == SampleMapKind::LensMatched;
+  if (ImGui::Checkbox("lens-matched sampling (hybrid)", &lensMatched))
+    c.settings.sampleMap = lensMatched ? SampleMapKind::LensMatched : SampleMapKind::Uniform;
   ImGui::Checkbox("re-projection", &c.reproject);
   ImGui::SliderFloat("exposure", &c.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::TextUnformatted(head.source->status().c_str());
@@ -214,12 +219,10 @@ struct Session {
   ViewConfig& c;
   std::unique_ptr<gl::Context> context;
   Head head;
-  std::unique_ptr<ViewRenderer> renderer;
-  std::unique_ptr<gl::Denoiser> denoiser;
-  std::unique_ptr<HeadsetCompositor> compositor;
+  std::unique_ptr<FramePipeline> pipeline;  // frames traced on its background worker
+  std::unique_ptr<display::Compositor> compositor;
   std::unique_ptr<ViewOverlay> overlay;
-  std::optional<FinishedFrame> shown;
-  bool shownDenoised = false, resetHistory = true;
+  std::optional<StereoFrame> shown;  // its display textures are what the compositor shows
   int saved = 0;
   Stats stats;
 
@@ -234,12 +237,15 @@ struct Session {
     if (dk2) placeOnHeadset(o);
     context = gl::Context::create(o);
     if (c.panel.x == 0)
-      c.panel = dk2 ? glm::ivec2(1920, 1080) : glm::ivec2(c.window.x & ~1, c.window.y);
-    renderer = std::make_unique<ViewRenderer>(
-        c.scene, c.eyes, context->hasExtension("GL_ARB_shader_viewport_layer_array"));
-    gl::DenoiseParams params;
-    denoiser = std::make_unique<gl::Denoiser>(c.eyes.width, c.eyes.height, params);
-    compositor = std::make_unique<HeadsetCompositor>(c.eyes, c.panel.x, c.panel.y, c.rotation);
+      c.panel = dk2 ? glm::ivec2(c.headset.lens.panel.hResolution, c.headset.lens.panel.vResolution)
+                    : glm::ivec2(c.window.x & ~1, c.window.y);
+    PipelineConfig p;
+    p.layout = c.eyes;
+    p.lens = c.headset.lens;
+    p.forDisplay = true;
+    pipeline = std::make_unique<FramePipeline>(c.scene, p, context.get());
+    compositor =
+        std::make_unique<display::Compositor>(c.headset, c.eyes, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
   }
 
@@ -255,47 +261,29 @@ struct Session {
     if (!c.rotationGiven) c.rotation = m.rotation;
   }
 
-  Pose headPose(double t) { return composePose(c.view.head, head.source->pose(t)); }
+  Pose headPose(double t) { return display::composePose(c.view.head, head.source->pose(t)); }
+  std::array<EyeCamera, 2> eyesAt(double t, glm::vec2 jitter) {
+    return display::headEyes(headPose(t), c.eyes, jitter, c.headset.ipd);
+  }
 
-  // A finished frame: denoised (its G-buffer is still the renderer's) or uploaded as is.
-  void accept(FinishedFrame f) {
-    const auto mode = gl::DenoiseMode(c.denoise);
-    const auto t0 = Clock::now();
-    // A frame of the other renderer starts a new history, so that what is shown after a
-    // switch is that renderer's alone (the frame in flight at the switch is the old mode's).
-    if (shown && f.settings.pathTraced != shown->settings.pathTraced) resetHistory = true;
-    if (mode != gl::DenoiseMode::Off) {
-      const DenoiseInput l = makeDenoiseInput(f.images[0]), r = makeDenoiseInput(f.images[1]);
-      denoiser->run(renderer->gbuffer(), {l.eye, r.eye}, 2, mode, resetHistory);
-      resetHistory = false;
-      shownDenoised = true;
-    } else {
-      for (int e = 0; e < 2; ++e) {
-        std::vector<glm::vec4> color(f.images[e].color.size());
-        for (size_t i = 0; i < color.size(); ++i) color[i] = glm::vec4(f.images[e].color[i], 1.0f);
-        compositor->upload(e, color, f.images[e].depth);
-      }
-      shownDenoised = false;
-      resetHistory = true;
-    }
-    gl::waitForGpu();
-    stats.denoiseMs = msSince(t0);
+  // A finished frame (denoised, or uploaded as is, by the pipeline's take()) replaces the
+  // one shown, whose images the worker traces a later frame into.
+  void accept(StereoFrame f, double finishMs) {
+    stats.denoiseMs = finishMs;
     stats.meanSpp = 0.5 * (meanSamples(f.images[0]) + meanSamples(f.images[1]));
     ++stats.rendered;
-    renderer->recycle(std::move(f.images));  // used up: the next frame is traced into them
+    stats.last = f.request;
+    stats.lastTimes = f.times;
+    if (shown) pipeline->recycle(std::move(*shown));
     shown = std::move(f);
-    stats.last = *shown;
   }
 
   void composite(const glm::ivec2& framebuffer) {
     const auto t0 = Clock::now();
-    const auto to = headEyes(headPose(head.now() + kDisplayLatency), c.eyes, {});
-    if (shownDenoised)
-      compositor->run(denoiser->linearTexture(), denoiser->depthTexture(), shown->eyes, to,
-                      c.exposure, c.reproject);
-    else
-      compositor->runUploaded(shown->eyes, to, c.exposure, c.reproject);
-    compositor->output().present(framebuffer.x, framebuffer.y);
+    const auto to = eyesAt(head.now() + c.headset.displayLatency, {});
+    compositor->run(shown->display, shown->request.eyes, to, c.exposure, c.reproject);
+    display::WindowOutput window([&] { return framebuffer; });  // the DK2's panel, or a mirror
+    compositor->show(window, int(shown->request.index));
     gl::waitForGpu();
     stats.compositorMs = msSince(t0);
   }
@@ -326,11 +314,15 @@ int runSession(ViewConfig& c) {
     s.stats.displayMs = 0.9 * s.stats.displayMs + 0.1 * dt;
     if (s.head.desktop && !(s.overlay && s.overlay->wantsMouse()))
       s.head.desktop->handle(desktopInput(in, float(dt * 1e-3)));
-    if (auto f = s.renderer->take()) s.accept(std::move(*f));
-    if (!s.renderer->busy()) {
-      s.renderer->start(
-          headEyes(s.headPose(s.head.now()), c.eyes, samplePosition(SamplerKind::Sobol, started++)),
-          c.settings);
+    const auto tf = Clock::now();
+    if (auto f = s.pipeline->take()) {  // finishes it: the denoiser or the upload
+      gl::waitForGpu();
+      s.accept(std::move(*f), msSince(tf));
+    }
+    if (!s.pipeline->busy()) {
+      const uint32_t index = started++;
+      s.pipeline->start({s.eyesAt(s.head.now(), samplePosition(SamplerKind::Sobol, index)), 2,
+                         index, c.settings});
     }
     if (s.shown) s.composite(in.framebufferSize);
     if (s.overlay) {
@@ -350,7 +342,7 @@ int runSession(ViewConfig& c) {
     s.context->swapBuffers();
   }
   std::printf("view: %d frames rendered, last %.0f ms; compositor %.1f ms per refresh\n",
-              s.stats.rendered, s.stats.last.totalMs, s.stats.compositorMs);
+              s.stats.rendered, s.stats.lastTimes.totalMs(), s.stats.compositorMs);
   return 0;
 }
 

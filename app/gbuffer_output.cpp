@@ -6,7 +6,7 @@
 namespace photovr::app {
 namespace {
 
-constexpr uint32_t kNoHit = 0xFFFFFFFFu;
+constexpr uint32_t kNoHit = kNoHitInstance;
 
 template <typename F>
 Image8 colourImage(const gl::GBufferImage& g, F pixel) {

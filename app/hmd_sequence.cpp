@@ -19,18 +19,18 @@
 #include <sstream>
 #include <utility>
 
-#include "app/gl_context.h"
-#include "app/memory.h"
+#include "gl/render_context.h"
+#include "core/memory.h"
 #include "core/options.h"
-#include "app/sample_maps.h"
-#include "app/trace_output.h"
+#include "trace/trace_output.h"
 #include "core/files.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "gl/denoiser.h"
 #include "hmd/dk2_driver.h"
-#include "hybrid/denoise_input.h"
-#include "hybrid/hybrid_renderer.h"
+#include "display/compositor.h"
+#include "display/output.h"
+#include "hmd/headset_description.h"
+#include "hybrid/frame_pipeline.h"
 
 namespace photovr::app {
 
@@ -81,13 +81,7 @@ glm::ivec2 parsePanelSize(const std::string& text) {
   return {w, h};
 }
 
-std::vector<glm::vec4> withAlpha(const std::vector<glm::vec3>& c) {
-  std::vector<glm::vec4> out(c.size());
-  for (size_t i = 0; i < c.size(); ++i) out[i] = glm::vec4(c[i], 1.0f);
-  return out;
-}
-
-std::string frameName(const RenderRequest& r, int k, const char* what) {
+std::string eyeImageName(const RenderRequest& r, int k, const char* what) {
   char name[32];
   std::snprintf(name, sizeof name, "/%04d_%s.png", k, what);
   return r.outDir + name;
@@ -122,13 +116,6 @@ HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd) {
 
 namespace {
 
-std::unique_ptr<gl::Denoiser> makeDenoiser(const RenderRequest& r, const StereoLayout& eyes) {
-  if (gl::parseDenoiseMode(r.denoise) == gl::DenoiseMode::Off) return nullptr;
-  gl::DenoiseParams params;
-  params.exposure = r.exposure;
-  return std::make_unique<gl::Denoiser>(eyes.width, eyes.height, params);
-}
-
 // hmd_frames.csv, kept in memory and written complete at the end (core/files.h),
 // like every image.
 class FrameLog {
@@ -145,33 +132,36 @@ class FrameLog {
   std::ostringstream out_;
 };
 
-// One sequence: the renderer, the denoiser and the compositor on one context.
+// One sequence on one context: the frame pipeline, the compositor, the panel images.
 class HmdSequence {
  public:
-  HmdSequence(const RenderRequest& r, const HmdSequenceOptions& o)
+  HmdSequence(const RenderRequest& r, const HmdSequenceOptions& o,
+              const hmd::HeadsetDescription& headset)
       : r_(r),
-        eyes_(StereoLayout::dk2(r.width, r.height, float(glm::radians(o.overscanDeg)))),
-        context_(createRenderContext(r.backend)),
-        renderer_(r.scene, eyes_.width, eyes_.height,
-                  context_->hasExtension("GL_ARB_shader_viewport_layer_array"), traceSettingsOf(r)),
-        denoiser_(makeDenoiser(r, eyes_)),
-        compositor_(eyes_, o.panelWidth, o.panelHeight, o.rotation),
-        maps_(lensSampleMaps(r.sampling, eyes_, r.spp)),
+        headset_(headset),
+        eyes_(headset.layout(r.width, r.height, float(glm::radians(o.overscanDeg)))),
+        context_(gl::createRenderContext(r.backend)),
+        pipeline_(r.scene, pipelineConfig(r, eyes_, headset), context_.get()),
+        compositor_(headset, eyes_, o.panelWidth, o.panelHeight, o.rotation),
+        panelFiles_(r.outDir),
         log_(r.outDir) {}
 
   // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
   void frame(int k, const FrameTimes& t, const Pose& trackedA, const Pose& trackedB) {
-    const auto from = headEyes(composePose(r_.view.head, trackedA), eyes_,
-                               samplePosition(r_.sampler, uint32_t(k)));
-    const auto to = headEyes(composePose(r_.view.head, trackedB), eyes_, glm::vec2(0));
+    const auto from = display::headEyes(display::composePose(r_.view.head, trackedA), eyes_,
+                                        samplePosition(r_.sampler, uint32_t(k)), headset_.ipd);
+    const auto to = display::headEyes(display::composePose(r_.view.head, trackedB), eyes_,
+                                      glm::vec2(0), headset_.ipd);
     const auto tr = Clock::now();
-    auto eyes = render(from, k);
+    StereoFrame frame = pipeline_.render({from, 2, uint32_t(k), frameSettingsOf(r_)});
+    gl::waitForGpu();
     const double renderMs = msSince(tr);
     const auto tc = Clock::now();
-    composite(eyes, from, to);
+    compositor_.run(frame.display, from, to, r_.exposure);
+    gl::waitForGpu();
     const double compositorMs = msSince(tc);
     renderTotal_ += renderMs, compositorTotal_ += compositorMs;
-    writeImages(k, eyes);
+    writeImages(k, frame);
     const float turn = glm::degrees(
         glm::angle(glm::normalize(glm::inverse(trackedA.orientation) * trackedB.orientation)));
     log_.row() << k << ',' << t.render << ',' << t.display << ',' << turn << ','
@@ -180,7 +170,7 @@ class HmdSequence {
                << compositor_.timewarp().stats(1).disoccludedFraction() << ',' << renderMs << ','
                << compositorMs << ',' << uncoveredFraction(0) << ',' << uncoveredFraction(1)
                << '\n';
-    renderer_.recycle(std::move(eyes));
+    pipeline_.recycle(std::move(frame));
   }
 
   // The share of an eye's lens-visible pixels the frame holds nothing for (the strip a
@@ -199,73 +189,60 @@ class HmdSequence {
         "ms/frame (denoise %s), compositor (re-projection + distortion + output) %.1f "
         "ms/frame\nwrote %s/NNNN_{left,right,panel}.png and %s/hmd_frames.csv\n",
         r_.frames, eyes_.width, eyes_.height, o.overscanDeg, o.panelWidth, o.panelHeight,
-        o.rotation, renderTotal_ / n, r_.denoise.c_str(), compositorTotal_ / n, r_.outDir.c_str(),
-        r_.outDir.c_str());
+        o.rotation, renderTotal_ / n, gl::denoiseModeName(r_.denoise).c_str(), compositorTotal_ / n,
+        r_.outDir.c_str(), r_.outDir.c_str());
   }
 
  private:
-  std::array<EyeImage, 2> render(const std::array<EyeCamera, 2>& from, int k) {
-    const std::array<const std::vector<uint16_t>*, 2> maps = {
-        maps_[0].empty() ? nullptr : &maps_[0], maps_[1].empty() ? nullptr : &maps_[1]};
-    HybridFrameTimes ft;
-    auto eyes = renderer_.render(from, 2, uint32_t(k), &ft, maps);
-    if (denoiser_) {
-      const DenoiseInput left = makeDenoiseInput(eyes[0]), right = makeDenoiseInput(eyes[1]);
-      denoiser_->run(renderer_.gbuffer(), {left.eye, right.eye}, 2,
-                     gl::parseDenoiseMode(r_.denoise), k == 0);
-    }
-    gl::waitForGpu();
-    return eyes;
+  static PipelineConfig pipelineConfig(const RenderRequest& r, const StereoLayout& eyes,
+                                       const hmd::HeadsetDescription& headset) {
+    PipelineConfig c;
+    c.layout = eyes;
+    c.lens = headset.lens;
+    c.skips = r.skips;
+    c.denoiser.exposure = r.exposure;
+    c.forDisplay = true;
+    return c;
   }
 
-  void composite(const std::array<EyeImage, 2>& eyes, const std::array<EyeCamera, 2>& from,
-                 const std::array<EyeCamera, 2>& to) {
-    if (denoiser_) {
-      compositor_.run(denoiser_->linearTexture(), denoiser_->depthTexture(), from, to, r_.exposure);
-    } else {
-      for (int e = 0; e < 2; ++e) compositor_.upload(e, withAlpha(eyes[e].color), eyes[e].depth);
-      compositor_.runUploaded(from, to, r_.exposure);
-    }
-    gl::waitForGpu();
-  }
-
-  void writeImages(int k, const std::array<EyeImage, 2>& eyes) const {
+  void writeImages(int k, const StereoFrame& frame) {
     for (int e = 0; e < 2; ++e) {
       const char* eye = e == 0 ? "left" : "right";
-      if (denoiser_)
-        writeImage(frameName(r_, k, eye),
-                   flipToImage(denoiser_->readDisplay(e), eyes_.width, eyes_.height));
+      if (frame.denoised)
+        writeImage(eyeImageName(r_, k, eye),
+                   flipToImage(pipeline_.denoiser()->readDisplay(e), eyes_.width, eyes_.height));
       else
-        writeImage(frameName(r_, k, eye), sideBySide({&eyes[e]}, r_.exposure));
+        writeImage(eyeImageName(r_, k, eye), sideBySide({&frame.images[e]}, r_.exposure));
     }
-    const gl::PanelOutput& out = compositor_.output();
-    writeImage(frameName(r_, k, "panel"), flipToImage(out.read(), out.width(), out.height()));
+    compositor_.show(panelFiles_, k);
   }
 
   const RenderRequest& r_;
+  const hmd::HeadsetDescription& headset_;
   StereoLayout eyes_;
   std::unique_ptr<gl::Context> context_;
-  HybridRenderer renderer_;
-  std::unique_ptr<gl::Denoiser> denoiser_;
-  HeadsetCompositor compositor_;
-  std::array<std::vector<uint16_t>, 2> maps_;
+  FramePipeline pipeline_;
+  display::Compositor compositor_;
+  display::ImageFileOutput panelFiles_;
   FrameLog log_;
   double renderTotal_ = 0.0, compositorTotal_ = 0.0;
 };
 
 }  // namespace
 
-int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, const HmdSequenceOptions& o) {
-  if (r.mode != "hybrid") throw UsageError("--hmd: needs --mode hybrid");
+int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, HmdSequenceOptions o) {
+  const hmd::HeadsetDescription headset = hmd::HeadsetDescription::dk2();
+  if (o.panelWidth == 0)
+    o.panelWidth = headset.lens.panel.hResolution, o.panelHeight = headset.lens.panel.vResolution;
+  if (r.mode != RenderMode::Hybrid) throw UsageError("--hmd: needs --mode hybrid");
   if (!r.view.stereo) throw UsageError("--hmd: needs --eyes stereo");
   std::string why;
   const auto source = openHeadPoseSource(spec, false, &why);
   if (!source) throw InputError("--hmd dk2", why);
   const double latency = o.latencyMs >= 0.0 ? o.latencyMs * 1e-3 : 1.0 / o.fps;
-  const StereoLayout eyes =
-      StereoLayout::dk2(r.width, r.height, float(glm::radians(o.overscanDeg)));
+  const StereoLayout eyes = headset.layout(r.width, r.height, float(glm::radians(o.overscanDeg)));
   checkFrameFitsInMemory(eyes.width, eyes.height, "--width/--height with --overscan");
-  HmdSequence sequence(r, o);
+  HmdSequence sequence(r, o, headset);
   std::printf("hmd: %s; timing: frame k rendered at t = k / %.3g s, shown at t + %.1f ms\n",
               source->status().c_str(), o.fps, latency * 1e3);
   for (int k = 0; k < r.frames; ++k) {

@@ -12,7 +12,7 @@ struct HmdSequenceOptions {
   double fps = 30.0;        // the renderer's rate: frame k starts at k / fps
   double latencyMs = -1.0;  // render start -> display; < 0: one renderer frame (1000 / fps)
   int rotation = 0;         // panel output rotation (90 = the DK2's native portrait scan)
-  int panelWidth = 1920, panelHeight = 1080;
+  int panelWidth = 0, panelHeight = 0;  // 0: the headset's panel (DK2: 1920x1080)
   double overscanDeg = 0.0;  // eye buffers this far beyond the lens's field (StereoLayout)
 };
 
@@ -20,8 +20,7 @@ struct HmdSequenceOptions {
 // accepted only with an --hmd other than none.
 HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd);
 
-int renderHmdSequence(const RenderRequest& request, const HmdSpec& hmd,
-                      const HmdSequenceOptions& options);
+int renderHmdSequence(const RenderRequest& request, const HmdSpec& hmd, HmdSequenceOptions options);
 
 extern const char* const kHmdRenderHelp;
 

@@ -4,9 +4,8 @@
 #include <iostream>
 
 #include "app/gbuffer_output.h"
-#include "app/gl_context.h"
+#include "gl/render_context.h"
 #include "app/render_request.h"
-#include "gl/context.h"
 #include "gl/draw_stats.h"
 #include "gl/gbuffer.h"
 #include "gl/scene_gpu.h"
@@ -14,12 +13,10 @@
 namespace photovr::app {
 
 int renderGBufferMode(const RenderRequest& r) {
-  auto context = createRenderContext(r.backend);
+  auto context = gl::createRenderContext(r.backend);
   const auto eyes = eyeCameras(r.view, r.width, r.height, 0, r.sampler);
   gl::SceneGpu gpu(r.scene);
-  gl::GBufferPass pass(r.width, r.height,
-                       context->hasExtension("GL_ARB_shader_viewport_layer_array"),
-                       gl::EyeRouting::Layered);
+  gl::GBufferPass pass(r.width, r.height);
   const std::array<glm::mat4, 2> previous = {eyes[0].unjitteredProjection() * eyes[0].view(),
                                              eyes[1].unjitteredProjection() * eyes[1].view()};
   gl::resetDrawStats();

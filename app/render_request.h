@@ -4,16 +4,21 @@
 #include <string>
 
 #include "app/commands.h"
-#include "app/view.h"
+#include "core/view.h"
+#include "core/progress.h"
 #include "core/scene.h"
-#include "trace/path_tracer.h"
+#include "hybrid/frame_pipeline.h"
+#include "hybrid/sample_maps.h"
 #include "trace/work_skips.h"
 
 namespace photovr::app {
 
+enum class RenderMode { Hybrid, PathTraced, GBuffer };
+const char* renderModeName(RenderMode mode);  // "hybrid", "pt", "gbuffer"
+
 struct RenderRequest {
   std::string sceneSpec;
-  std::string mode;     // gbuffer | pt
+  RenderMode mode = RenderMode::Hybrid;
   std::string backend;  // empty = egl, falling back to osmesa
   std::string outDir;
   int width = 0, height = 0;
@@ -21,10 +26,10 @@ struct RenderRequest {
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   float exposure = 1.0f;
-  std::string denoise = "off";       // off | temporal | full (hybrid)
-  std::string sampling = "uniform";  // uniform | hidden-area | lens-matched | thesis-zones
-  WorkSkips skips;                   // --no-skip turns skips off (trace/work_skips.h)
-  double converge = 0.0;             // --converge: stop at this estimated relMSE; 0 = off
+  gl::DenoiseMode denoise = gl::DenoiseMode::Off;
+  SampleMapKind sampling = SampleMapKind::Uniform;  // --sampling (hybrid, stereo)
+  WorkSkips skips;        // --no-skip turns skips off (trace/work_skips.h)
+  double converge = 0.0;  // --converge: stop at this estimated relMSE; 0 = off
   Scene scene;
   View view;
 };
@@ -36,15 +41,12 @@ inline const char* eyeFolder(const View& v, int eye) {
   return v.stereo ? (eye == 0 ? "left" : "right") : "mono";
 }
 
-// The tracer's settings a request asks for (spp, bounces, seed, skips).
-TraceSettings traceSettingsOf(const RenderRequest& request);
+// The frame settings a request asks for (mode, spp, bounces, seed, sampler, maps, denoiser).
+FrameSettings frameSettingsOf(const RenderRequest& request);
 
 int renderGBufferMode(const RenderRequest& request);
-int renderPathTracedMode(const RenderRequest& request);
-int renderHybridMode(const RenderRequest& request);
-
-// Progress on stderr while a long render runs, only when stderr is a terminal.
-void reportProgress(double fraction, double raysPerSecond, double secondsLeft);
+// --mode hybrid and --mode pt: frames through the frame pipeline, accumulated.
+int renderTracedMode(const RenderRequest& request);
 
 extern const char* const kRenderHelp;
 

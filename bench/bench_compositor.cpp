@@ -18,7 +18,9 @@
 #include <functional>
 #include <string>
 
-#include "app/headset.h"
+#include "display/compositor.h"
+#include "gl/compositor.h"
+#include "hmd/headset_description.h"
 #include "bench/bench_cli.h"
 #include "bench/pass_timing.h"
 #include "core/builtin_scenes.h"
@@ -30,6 +32,7 @@
 #include "gl/scene_gpu.h"
 #include "hmd/lens_maps.h"
 #include "hybrid/hybrid_renderer.h"
+#include "hybrid/sample_maps.h"
 
 PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
@@ -46,13 +49,13 @@ struct Config {
 };
 
 std::array<EyeCamera, 2> sceneEyes(const Scene& s, int w, int h, glm::vec2 jitter) {
-  return app::headEyes(poseOf(s.cameras.at(0)), StereoLayout::dk2(w, h), jitter);
+  return display::headEyes(poseOf(s.cameras.at(0)), StereoLayout::dk2(w, h), jitter);
 }
 
 // A small head turn (1.5 deg yaw, 1 cm): what a refresh re-projects over.
 std::array<EyeCamera, 2> movedEyes(const Scene& s, int w, int h) {
   const Pose p = turnedHead(s, 1.5f, glm::vec3(0.01f, 0.0f, 0.0f));
-  return app::headEyes(p, StereoLayout::dk2(w, h), glm::vec2(0.0f));
+  return display::headEyes(p, StereoLayout::dk2(w, h), glm::vec2(0.0f));
 }
 
 // What a pass shows at a pose against the truth there: the distortion chain on the G-buffer
@@ -79,14 +82,15 @@ struct Timing {
 
 // The head turned only (no parallax): the timewarp's cheapest case, one depth fetch.
 std::array<EyeCamera, 2> turnedEyes(const Scene& s, int w, int h) {
-  return app::headEyes(turnedHead(s, 1.5f), StereoLayout::dk2(w, h), glm::vec2(0.0f));
+  return display::headEyes(turnedHead(s, 1.5f), StereoLayout::dk2(w, h), glm::vec2(0.0f));
 }
 
-Timing timeScene(const std::string& name, const Config& c, bool layered) {
+Timing timeScene(const std::string& name, const Config& c) {
   const Scene scene = makeBuiltinScene(name);
   const gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(c.eyeW, c.eyeH, layered, gl::EyeRouting::Layered);
-  app::HeadsetCompositor comp(StereoLayout::dk2(c.eyeW, c.eyeH), c.panelW, c.panelH, 90);
+  gl::GBufferPass pass(c.eyeW, c.eyeH, gl::EyeRouting::Layered);
+  display::Compositor comp(hmd::HeadsetDescription::dk2(), StereoLayout::dk2(c.eyeW, c.eyeH),
+                           c.panelW, c.panelH, 90);
   const auto from = sceneEyes(scene, c.eyeW, c.eyeH, glm::vec2(0.0f));
   const auto to = movedEyes(scene, c.eyeW, c.eyeH);
   const auto turned = turnedEyes(scene, c.eyeW, c.eyeH);
@@ -98,13 +102,21 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
   gl::ReprojectParams params;
   params.gridStep = 2;
   gl::Reprojector grid(c.eyeW, c.eyeH, params);
-  gl::Distorter distorter(app::dk2PanelLens(c.panelW, c.panelH), c.eyeW, c.eyeH,
-                          app::eyeFovs(StereoLayout::dk2(c.eyeW, c.eyeH)));
+  gl::Distorter distorter(display::panelLens(hmd::HeadsetDescription::dk2(), c.panelW, c.panelH),
+                          c.eyeW, c.eyeH,
+                          {FovTangents::dk2LeftEye(), FovTangents::dk2LeftEye().mirrored()});
   const auto best = bestOfRounds(
       c.repeats,
-      {[&] { pass.render(gpu, from, vp); }, [&] { comp.run(color, depth, from, to, 1.0f); },
-       [&] { comp.run(color, depth, from, turned, 1.0f); },
-       [&] { comp.run(color, depth, from, from, 1.0f, false); },
+      {[&] { pass.render(gpu, from, vp); },
+       [&] {
+         comp.run({color, depth}, from, to, 1.0f);
+       },
+       [&] {
+         comp.run({color, depth}, from, turned, 1.0f);
+       },
+       [&] {
+         comp.run({color, depth}, from, from, 1.0f, false);
+       },
        [&] { grid.run(color, depth, from, to); }, [&] { distorter.run(grid.colorTexture()); },
        [&] { comp.output().run(distorter.panelTexture(), 1.0f); },
        [&] { comp.timewarp().runPanelFloor(color, depth, from, comp.output()); }});
@@ -123,7 +135,7 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
     e.pose = pose;
     const auto truth = panelOf(to);
     panelOf(from);  // back to the frame at A
-    comp.run(color, depth, from, to, 1.0f);
+    comp.run({color, depth}, from, to, 1.0f);
     e.timewarp = panelDifference(comp.output().read(), truth);
     int disoccluded = 0, visible = 0;
     for (int eye = 0; eye < 2; ++eye) {
@@ -132,7 +144,7 @@ Timing timeScene(const std::string& name, const Config& c, bool layered) {
       visible += st.reprojected + st.filled + st.uncovered;
     }
     e.disoccluded = double(disoccluded) / std::max(visible, 1);
-    comp.run(color, depth, from, from, 1.0f, false);
+    comp.run({color, depth}, from, from, 1.0f, false);
     e.stale = panelDifference(comp.output().read(), truth);
     grid.run(color, depth, from, to);
     distorter.run(grid.colorTexture());
@@ -230,31 +242,17 @@ double weightedError(const std::array<EyeImage, 2>& img,
   return sum / wsum;
 }
 
-std::array<std::vector<uint16_t>, 2> sppMaps(const std::string& method, const Config& c) {
-  const hmd::LensModel lens;
-  std::array<std::vector<uint16_t>, 2> maps;
-  if (method == "uniform") return maps;
-  for (int e = 0; e < 2; ++e) {
-    hmd::EyeBufferSpec spec;
-    spec.eye = Eye(e);
-    spec.fov = e == 0 ? FovTangents::dk2LeftEye() : FovTangents::dk2LeftEye().mirrored();
-    spec.width = c.lensW, spec.height = c.lensH;
-    if (method == "hidden-area") {
-      const auto mask = hmd::hiddenAreaMask(lens, spec);
-      maps[e].resize(mask.size());
-      for (size_t i = 0; i < mask.size(); ++i) maps[e][i] = mask[i] ? 0 : uint16_t(c.uniformSpp);
-    } else {  // lens-matched, its maximum twice the uniform count
-      maps[e] = hmd::lensMatchedSpp(lens, spec, 2 * c.uniformSpp);
-    }
-  }
-  return maps;
+// Hidden-area at the uniform count; lens-matched with its maximum twice the uniform count.
+StereoSampleMaps sppMaps(SampleMapKind kind, const Config& c) {
+  const int spp = kind == SampleMapKind::LensMatched ? 2 * c.uniformSpp : c.uniformSpp;
+  return lensSampleMaps(kind, StereoLayout::dk2(c.lensW, c.lensH), spp);
 }
 
-std::vector<LensRow> lensStudy(const Config& c, bool layered) {
+std::vector<LensRow> lensStudy(const Config& c) {
   const Scene scene = makeBuiltinScene("cornell");
   TraceSettings settings;
   settings.samplesPerPixel = c.referenceSpp;
-  HybridRenderer renderer(scene, c.lensW, c.lensH, layered, settings);
+  HybridRenderer renderer(scene, c.lensW, c.lensH, settings);
   const auto eyes = sceneEyes(scene, c.lensW, c.lensH, samplePosition(SamplerKind::Sobol, 0));
   // Reference: every round the same jittered pixel positions (frame 0), new seeds.
   std::array<std::vector<glm::vec3>, 2> ref;
@@ -269,19 +267,19 @@ std::vector<LensRow> lensStudy(const Config& c, bool layered) {
   }
   const auto weights = densityWeights(c.lensW, c.lensH);
   std::vector<LensRow> rows;
-  for (const std::string method : {"uniform", "hidden-area", "lens-matched"}) {
+  for (const SampleMapKind kind :
+       {SampleMapKind::Uniform, SampleMapKind::HiddenArea, SampleMapKind::LensMatched}) {
+    const std::string method = sampleMapKindName(kind);
     TraceSettings ts;
     ts.samplesPerPixel = c.uniformSpp;
-    HybridRenderer r(scene, c.lensW, c.lensH, layered, ts);
-    const auto maps = sppMaps(method, c);
-    const std::array<const std::vector<uint16_t>*, 2> ptrs = {maps[0].empty() ? nullptr : &maps[0],
-                                                              maps[1].empty() ? nullptr : &maps[1]};
+    HybridRenderer r(scene, c.lensW, c.lensH, ts);
+    const StereoSampleMaps maps = sppMaps(kind, c);
     LensRow row;
     row.method = method;
     for (int t = 0; t < c.trials; ++t) {
       r.setSeed(uint32_t(t + 1));
-      HybridFrameTimes times;
-      const auto img = r.render(eyes, 2, 0, &times, ptrs);
+      FrameTimes times;
+      const auto img = r.render(eyes, 2, 0, &times, maps);
       row.cpuMs += times.cpuMs() / c.trials;
       row.error += weightedError(img, ref, weights) / c.trials;
       double spp = 0, traced = 0;
@@ -343,7 +341,6 @@ Config parse(const Options& o) {
 int run(const Options& options) {
   const Config c = parse(options);
   const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
-  const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::filesystem::create_directories(c.out);
   std::printf(
       "bench_compositor: eyes %dx%d x 2, panel %dx%d (rotation 90), best of %d rounds; GL: %s\n",
@@ -362,7 +359,7 @@ int run(const Options& options) {
          "as_rendered_over_gbuffer,floor_ms,floor_over_gbuffer\n";
   std::vector<Timing> timings;
   for (const std::string& name : c.scenes) {
-    const Timing& t = timings.emplace_back(timeScene(name, c, layered));
+    const Timing& t = timings.emplace_back(timeScene(name, c));
     const double fused = t.timewarp.wall / t.gbuffer.wall, chain = t.chain().wall / t.gbuffer.wall;
     const double fusedCpu = t.timewarp.cpu / t.gbuffer.cpu,
                  chainCpu = t.chain().cpu / t.gbuffer.cpu;
@@ -404,7 +401,7 @@ int run(const Options& options) {
         c.lensW, c.lensH, maxSpp, g.linear, g.sqrt);
   }
   if (!c.samplingStudy) return 0;
-  const std::vector<LensRow> rows = lensStudy(c, layered);
+  const std::vector<LensRow> rows = lensStudy(c);
   std::printf("sampling (cornell, %dx%d x 2 eyes, reference %d spp, mean of %d trials):\n", c.lensW,
               c.lensH, c.referenceSpp * c.referenceRounds, c.trials);
   std::printf("%-13s %9s %8s %10s %14s %14s %14s\n", "method", "mean spp", "traced", "tracer",

@@ -11,7 +11,7 @@
 //    after 8 static frames of history) against an undenoised hybrid frame with as many
 //    spp as fit in the 1-spp frame's tracing time plus the denoiser's time, i.e.
 //    1 + floor(denoise / tracer CPU time of one spp). relMSE against the cached converged
-//    reference of `photovr ab` (app/reference_cache.*, --reference-spp, default 256).
+//    reference of `photovr ab` (harness/reference_cache.*, --reference-spp, default 256).
 // Writes bench_denoise_passes.csv and bench_denoise_equal_time.csv to --out (default
 // out/bench).
 #include <algorithm>
@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "app/gl_context.h"
+#include "gl/render_context.h"
 #include "core/options.h"
-#include "app/reference_cache.h"
-#include "app/view.h"
+#include "harness/reference_cache.h"
+#include "core/view.h"
 #include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
@@ -52,11 +52,11 @@ struct Args {
 // reference cache is shared with ab at the same size.
 struct Setup {
   Scene scene;
-  app::View view;
+  View view;
 };
 Setup setupScene(const std::string& name) {
   Setup s{makeBuiltinScene(name), {}};
-  s.view = app::resolveView(s.scene, Options({}, {}, {}));
+  s.view = resolveView(s.scene, Options({}, {}, {}));
   s.view.head = recenterOnView(s.scene, s.view.head);
   return s;
 }
@@ -96,7 +96,7 @@ std::vector<gl::PassTiming> timePasses(gl::Denoiser& dn, const HybridRenderer& r
   return mean;
 }
 
-void benchPasses(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
+void benchPasses(const Args& a, std::ofstream& csv) {
   std::printf(
       "\nPer-pass denoiser time, both eyes, 1-spp hybrid frame of cornell (ms, mean of %d"
       " steady-state frames, glFinish-bracketed):\n",
@@ -104,10 +104,9 @@ void benchPasses(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
   csv << "eye_width,eye_height,mode,index,pass,ms\n";
   Setup s = setupScene("cornell");
   for (glm::ivec2 size : {glm::ivec2(960, 1080), glm::ivec2(480, 540)}) {
-    HybridRenderer r(s.scene, size.x, size.y,
-                     ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), TraceSettings{});
+    HybridRenderer r(s.scene, size.x, size.y, TraceSettings{});
     const std::array<EyeImage, 2> images =
-        r.render(app::eyeCameras(s.view, size.x, size.y, 0, SamplerKind::Sobol), 2, 0, nullptr);
+        r.render(eyeCameras(s.view, size.x, size.y, 0, SamplerKind::Sobol), 2, 0, nullptr);
     const std::array<DenoiseInput, 2> in = inputsOf(images);
     gl::Denoiser dn(size.x, size.y);
     dn.setTiming(true);
@@ -124,11 +123,11 @@ void benchPasses(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
   }
 }
 
-double relMseBothEyes(const std::array<EyeImage, 2>& img, const app::Reference& ref) {
+double relMseBothEyes(const std::array<EyeImage, 2>& img, const harness::Reference& ref) {
   return 0.5 * (relMse(img[0].color, ref.eyes[0]) + relMse(img[1].color, ref.eyes[1]));
 }
 
-double relMseBothEyes(const gl::Denoiser& dn, const app::Reference& ref) {
+double relMseBothEyes(const gl::Denoiser& dn, const harness::Reference& ref) {
   return 0.5 * (relMse(dn.readLinear(0), ref.eyes[0]) + relMse(dn.readLinear(1), ref.eyes[1]));
 }
 
@@ -140,18 +139,16 @@ struct EqualTime {
 };
 
 // 8 static frames of 1-spp hybrid + full denoising, then the N-spp undenoised frame.
-EqualTime equalTime(const gl::Context& ctx, const Setup& s, const app::Reference& ref,
-                    const Args& a) {
+EqualTime equalTime(const Setup& s, const harness::Reference& ref, const Args& a) {
   const int w = a.eqWidth, h = a.eqHeight;
-  const bool layers = ctx.hasExtension("GL_ARB_shader_viewport_layer_array");
   EqualTime e;
-  HybridRenderer r(s.scene, w, h, layers, TraceSettings{});
+  HybridRenderer r(s.scene, w, h, TraceSettings{});
   gl::Denoiser dn(w, h);
   dn.setTiming(true);
   for (uint32_t f = 0; f < 8; ++f) {
-    HybridFrameTimes t;
+    FrameTimes t;
     const std::array<EyeImage, 2> images =
-        r.render(app::eyeCameras(s.view, w, h, f, SamplerKind::Sobol), 2, f, &t);
+        r.render(eyeCameras(s.view, w, h, f, SamplerKind::Sobol), 2, f, &t);
     const std::array<DenoiseInput, 2> in = inputsOf(images);
     denoise(dn, r, in, gl::DenoiseMode::Full, f == 0);
     // Frame 0 pays the shader JIT: not timed.
@@ -168,17 +165,17 @@ EqualTime equalTime(const gl::Context& ctx, const Setup& s, const app::Reference
   e.spp = 1 + int(e.denoiseMs / e.tracerCpuMs);
   TraceSettings many;
   many.samplesPerPixel = e.spp;
-  HybridRenderer rm(s.scene, w, h, layers, many);
-  rm.render(app::eyeCameras(s.view, w, h, 0, SamplerKind::Sobol), 2, 0, nullptr);  // warm-up
-  HybridFrameTimes t;
+  HybridRenderer rm(s.scene, w, h, many);
+  rm.render(eyeCameras(s.view, w, h, 0, SamplerKind::Sobol), 2, 0, nullptr);  // warm-up
+  FrameTimes t;
   const std::array<EyeImage, 2> images =
-      rm.render(app::eyeCameras(s.view, w, h, 8, SamplerKind::Sobol), 2, 8, &t);
+      rm.render(eyeCameras(s.view, w, h, 8, SamplerKind::Sobol), 2, 8, &t);
   e.sppFrameMs = t.totalMs();
   e.sppRelMse = relMseBothEyes(images, ref);
   return e;
 }
 
-void benchEqualTime(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
+void benchEqualTime(const Args& a, std::ofstream& csv) {
   std::printf("\nEqual time, both eyes at %dx%d, relMSE against a %d-spp reference:\n", a.eqWidth,
               a.eqHeight, a.referenceSpp);
   std::printf("  %-8s %9s %9s | %9s %9s %9s | %4s %9s %9s | %s\n", "scene", "trace_ms", "denoise",
@@ -188,9 +185,9 @@ void benchEqualTime(const gl::Context& ctx, const Args& a, std::ofstream& csv) {
          "equal_time_relmse,reference_spp\n";
   for (const std::string& name : a.scenes) {
     const Setup s = setupScene(name);
-    const app::Reference ref =
-        app::loadOrRenderReference({&s.scene, s.view, a.eqWidth, a.eqHeight, 8}, a.referenceSpp);
-    const EqualTime e = equalTime(ctx, s, ref, a);
+    const harness::Reference ref = harness::loadOrRenderReference(
+        {&s.scene, s.view, a.eqWidth, a.eqHeight, 8}, a.referenceSpp);
+    const EqualTime e = equalTime(s, ref, a);
     const char* winner = e.denoised8 < e.sppRelMse ? "denoised" : "more spp";
     std::printf("  %-8s %9.1f %9.1f | %9.4f %9.4f %9.4f | %4d %9.1f %9.4f | %s%s\n", name.c_str(),
                 e.traceMs, e.denoiseMs, e.raw, e.denoisedFirst, e.denoised8, e.spp, e.sppFrameMs,
@@ -224,15 +221,15 @@ Args parse(const Options& o) {
 
 int run(const Options& options) {
   const Args a = parse(options);
-  const std::unique_ptr<gl::Context> ctx = app::createRenderContext("");
+  const std::unique_ptr<gl::Context> ctx = gl::createRenderContext("");
   std::printf("bench_denoise: GL %s\n", ctx->renderer().c_str());
   std::filesystem::create_directories(a.out);
   if (!a.skipPasses) {
     std::ofstream passes(a.out + "/bench_denoise_passes.csv");
-    benchPasses(*ctx, a, passes);
+    benchPasses(a, passes);
   }
   std::ofstream eq(a.out + "/bench_denoise_equal_time.csv");
-  benchEqualTime(*ctx, a, eq);
+  benchEqualTime(a, eq);
   std::printf("wrote %s/bench_denoise_*.csv\n", a.out.c_str());
   return 0;
 }

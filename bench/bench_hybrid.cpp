@@ -30,7 +30,7 @@ namespace {
 
 struct Row {
   std::string scene;
-  HybridFrameTimes hybrid;  // best frame
+  FrameTimes hybrid;  // best frame
   double hybridFrameMs = 1e30, pipelinedFrameMs = 1e30;
   double ptFrameMs = 1e30, ptPrimaryMs = 1e30;
   uint64_t hybridRays = 0, ptRays = 0;
@@ -59,7 +59,7 @@ void measureHybrid(HybridRenderer& r, const Scene& s, int w, int h, int repeats,
   r.embree().setRecorder(nullptr);
   const std::vector<RecordedRay> rays = recorder.take();
   for (int k = 0; k < repeats; ++k) {
-    HybridFrameTimes t;
+    FrameTimes t;
     r.recycle(r.render(eyesOf(s, w, h, uint32_t(k)), 2, uint32_t(k), &t));
     if (t.totalMs() < row.hybridFrameMs) row.hybridFrameMs = t.totalMs(), row.hybrid = t;
     row.hybridRays = t.rays;
@@ -93,7 +93,7 @@ void measurePt(const TraceContext& ctx, const Scene& s, int w, int h, int repeat
 }
 
 void print(const Row& r, std::ofstream& csv) {
-  const HybridFrameTimes& h = r.hybrid;
+  const FrameTimes& h = r.hybrid;
   std::printf(
       "%-8s hybrid %7.1f ms (G-buffer %6.1f, read-back %5.1f, rebuild %5.1f, trace %7.1f)"
       " pipelined %7.1f ms | pt %7.1f ms (primary hits %5.1f)\n",
@@ -127,8 +127,7 @@ int run(const Options& o) {
          "pt_primary_ms,hybrid_tracer_mrays,pt_mrays,hybrid_raw_ratio\n";
   for (const std::string& name : builtinSceneNames()) {
     const Scene scene = makeBuiltinScene(name);
-    HybridRenderer renderer(scene, w, h, ctx->hasExtension("GL_ARB_shader_viewport_layer_array"),
-                            TraceSettings{});
+    HybridRenderer renderer(scene, w, h, TraceSettings{});
     Row row;
     row.scene = name;
     measureHybrid(renderer, scene, w, h, repeats, row);

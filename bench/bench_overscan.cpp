@@ -18,7 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "app/headset.h"
+#include "display/compositor.h"
+#include "gl/compositor.h"
+#include "hmd/headset_description.h"
 #include "bench/bench_cli.h"
 #include "bench/pass_timing.h"
 #include "core/builtin_scenes.h"
@@ -83,31 +85,32 @@ double tracedPixels(const StereoLayout& l) {
 
 // The panel at each turn, rendered there with the layout 'marginDeg' gives.
 std::vector<std::vector<glm::u8vec4>> panelsAt(const Scene& scene, const gl::SceneGpu& gpu,
-                                               double marginDeg, const Config& c, bool layered) {
+                                               double marginDeg, const Config& c) {
   const StereoLayout layout = StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
-  gl::GBufferPass pass(layout.width, layout.height, layered, gl::EyeRouting::Layered);
-  app::HeadsetCompositor comp(layout, c.panelW, c.panelH, 90);
+  gl::GBufferPass pass(layout.width, layout.height, gl::EyeRouting::Layered);
+  display::Compositor comp(hmd::HeadsetDescription::dk2(), layout, c.panelW, c.panelH, 90);
   std::vector<std::vector<glm::u8vec4>> panels;
   for (const Turn& t : kTurns) {
-    const auto at = app::headEyes(turned(scene, t), layout, glm::vec2(0.0f));
+    const auto at = display::headEyes(turned(scene, t), layout, glm::vec2(0.0f));
     pass.render(gpu, at, viewProjections(at));
-    comp.run(pass.texture(gl::GBufferTarget::BaseColor), pass.depthTexture(), at, at, 1.0f, false);
+    comp.run({pass.texture(gl::GBufferTarget::BaseColor), pass.depthTexture()}, at, at, 1.0f,
+             false);
     panels.push_back(comp.output().read());
   }
   return panels;
 }
 
 Row measure(const Scene& scene, const gl::SceneGpu& gpu, double marginDeg, const Config& c,
-            bool layered, const std::vector<std::vector<glm::u8vec4>>& truth) {
+            const std::vector<std::vector<glm::u8vec4>>& truth) {
   Row row;
   row.marginDeg = marginDeg;
   const StereoLayout layout = StereoLayout::dk2(c.fieldW, c.fieldH, float(glm::radians(marginDeg)));
   row.width = layout.width, row.height = layout.height;
   row.traced = tracedPixels(layout);
-  gl::GBufferPass pass(layout.width, layout.height, layered, gl::EyeRouting::Layered);
-  app::HeadsetCompositor comp(layout, c.panelW, c.panelH, 90);
+  gl::GBufferPass pass(layout.width, layout.height, gl::EyeRouting::Layered);
+  display::Compositor comp(hmd::HeadsetDescription::dk2(), layout, c.panelW, c.panelH, 90);
   const unsigned color = pass.texture(gl::GBufferTarget::BaseColor), depth = pass.depthTexture();
-  const auto from = app::headEyes(poseOf(scene.cameras.at(0)), layout, glm::vec2(0.0f));
+  const auto from = display::headEyes(poseOf(scene.cameras.at(0)), layout, glm::vec2(0.0f));
   const auto render = [&](const std::array<EyeCamera, 2>& at) {
     pass.render(gpu, at, viewProjections(at));
   };
@@ -115,8 +118,8 @@ Row measure(const Scene& scene, const gl::SceneGpu& gpu, double marginDeg, const
   const double panel = double(c.panelW) * c.panelH;
   render(from);
   for (size_t i = 0; i < std::size(kTurns); ++i) {
-    const auto to = app::headEyes(turned(scene, kTurns[i]), layout, glm::vec2(0.0f));
-    comp.run(color, depth, from, to, 1.0f);
+    const auto to = display::headEyes(turned(scene, kTurns[i]), layout, glm::vec2(0.0f));
+    comp.run({color, depth}, from, to, 1.0f);
     const PanelDifference d = panelDifference(comp.output().read(), truth[i]);
     row.turns.push_back({d.blackInOne / panel, d.meanLevels});
   }
@@ -154,7 +157,6 @@ int run(const Options& o) {
   c.fieldH = o.integer("--height", c.fieldH, 8, 4096);
   c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
   const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
-  const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::filesystem::create_directories(c.out);
   std::printf("bench_overscan: field %dx%d per eye, panel %dx%d; GL: %s\n", c.fieldW, c.fieldH,
               c.panelW, c.panelH, ctx->renderer().c_str());
@@ -170,10 +172,10 @@ int run(const Options& o) {
   for (const std::string& name : c.scenes) {
     const Scene scene = makeBuiltinScene(name);
     const gl::SceneGpu gpu(scene);
-    const auto truth = panelsAt(scene, gpu, 0.0, c, layered);
+    const auto truth = panelsAt(scene, gpu, 0.0, c);
     std::vector<Row> rows;
     for (double m : c.margins) {
-      const Row& r = rows.emplace_back(measure(scene, gpu, m, c, layered, truth));
+      const Row& r = rows.emplace_back(measure(scene, gpu, m, c, truth));
       printRow(name, r, rows.front(), csv);
     }
   }

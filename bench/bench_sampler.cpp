@@ -3,7 +3,7 @@
 //
 // 1. Pure path tracing, mono --width x --height (96x96), 8 bounces, one frame of 16, 64
 //    and 256 spp, --seeds (8) seeds each: relMSE against a converged reference
-//    (app/reference_cache.*, --reference-spp 4096, its own seed), the mean over the seeds,
+//    (harness/reference_cache.*, --reference-spp 4096, its own seed), the mean over the seeds,
 //    the Sobol/random ratio, the slope of log relMSE against log spp (least squares over
 //    the three counts; -1 is Monte Carlo's rate) and the tracing time per sample. Scenes:
 //    every built-in one and the two environment-lit glTF scenes of bench/sampler_scenes.h.
@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "app/gl_context.h"
-#include "app/reference_cache.h"
-#include "app/view.h"
+#include "gl/render_context.h"
+#include "harness/reference_cache.h"
+#include "core/view.h"
 #include "bench/bench_cli.h"
 #include "bench/sampler_scenes.h"
 #include "core/error_metrics.h"
@@ -61,13 +61,13 @@ struct Args {
 
 struct Setup {
   Scene scene;
-  app::View view;
+  View view;
 };
 
 Setup setupScene(const std::string& name, const std::string& dir, bool stereo) {
   Setup s{bench::isGltfScene(name) ? bench::makeGltfScene(name, dir) : makeBuiltinScene(name), {}};
-  const Options eyes({"--eyes", stereo ? "stereo" : "mono"}, app::kViewOptions, {});
-  s.view = app::resolveView(s.scene, eyes);
+  const Options eyes({"--eyes", stereo ? "stereo" : "mono"}, kViewOptions, {});
+  s.view = resolveView(s.scene, eyes);
   if (stereo) s.view.head = recenterOnView(s.scene, s.view.head);
   return s;
 }
@@ -113,7 +113,7 @@ PtFigure measurePt(const Setup& s, const EmbreeScene& embree, const LightSet& li
                    const std::vector<glm::vec3>& reference, SamplerKind kind, int spp,
                    const Args& a) {
   PtFigure f;
-  const EyeCamera cam = app::eyeCameras(s.view, a.width, a.height, 0, kind)[0];
+  const EyeCamera cam = eyeCameras(s.view, a.width, a.height, 0, kind)[0];
   for (int seed = 1; seed <= a.seeds; ++seed) {
     TraceSettings settings;
     settings.samplesPerPixel = spp;
@@ -139,8 +139,8 @@ void benchPt(const Args& a, std::ofstream& csv) {
   csv << "scene,width,height,spp,sampler,seeds,relmse,trimmed_relmse,ms_per_spp,reference_spp\n";
   for (const std::string& name : a.scenes) {
     const Setup s = setupScene(name, a.out, false);
-    const app::Reference ref =
-        app::loadOrRenderReference({&s.scene, s.view, a.width, a.height, 8}, a.referenceSpp);
+    const harness::Reference ref =
+        harness::loadOrRenderReference({&s.scene, s.view, a.width, a.height, 8}, a.referenceSpp);
     const EmbreeScene embree(s.scene);
     const LightSet lights(s.scene);
     std::vector<double> spps, errors[2], trimmed[2];
@@ -188,7 +188,8 @@ double frameChange(const std::array<std::vector<glm::vec3>, 2>& now,
   return sum > 0.0 ? diff / sum : 0.0;
 }
 
-double relMseBothEyes(const std::array<std::vector<glm::vec3>, 2>& img, const app::Reference& ref) {
+double relMseBothEyes(const std::array<std::vector<glm::vec3>, 2>& img,
+                      const harness::Reference& ref) {
   return 0.5 * (relMse(img[0], ref.eyes[0]) + relMse(img[1], ref.eyes[1]));
 }
 
@@ -197,18 +198,18 @@ struct HybridFigure {
 };
 
 // One seed's 8 frames; adds its figures / 'share' to 'f'.
-void runHybrid(const gl::Context& ctx, const Setup& s, const app::Reference& ref, SamplerKind kind,
-               uint32_t seed, const Args& a, double share, HybridFigure& f) {
+void runHybrid(const Setup& s, const harness::Reference& ref, SamplerKind kind, uint32_t seed,
+               const Args& a, double share, HybridFigure& f) {
   const int w = a.hybridWidth, h = a.hybridHeight;
   TraceSettings settings;
   settings.seed = seed;
   settings.sampler = kind;
-  HybridRenderer r(s.scene, w, h, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), settings);
+  HybridRenderer r(s.scene, w, h, settings);
   gl::Denoiser dn(w, h);
   std::array<std::vector<glm::vec3>, 2> raw, denoised, lastRaw, lastDenoised;
   for (int frame = 0; frame < kHybridFrames; ++frame) {
     const std::array<EyeImage, 2> images =
-        r.render(app::eyeCameras(s.view, w, h, uint32_t(frame), kind), 2, uint32_t(frame), nullptr);
+        r.render(eyeCameras(s.view, w, h, uint32_t(frame), kind), 2, uint32_t(frame), nullptr);
     const DenoiseInput in[2] = {makeDenoiseInput(images[0]), makeDenoiseInput(images[1])};
     dn.run(r.gbuffer(), {in[0].eye, in[1].eye}, 2, gl::DenoiseMode::Full, frame == 0);
     for (int e = 0; e < 2; ++e) raw[e] = images[e].color, denoised[e] = dn.readLinear(e);
@@ -225,7 +226,7 @@ void runHybrid(const gl::Context& ctx, const Setup& s, const app::Reference& ref
 }
 
 void benchHybrid(const Args& a, std::ofstream& csv) {
-  const std::unique_ptr<gl::Context> ctx = app::createRenderContext("");
+  const std::unique_ptr<gl::Context> ctx = gl::createRenderContext("");
   std::printf(
       "\nHybrid, both eyes %dx%d, 1 spp x %d static frames, full denoiser; relMSE of"
       " the last frame and flicker (mean of %d seeds) against a %d-spp reference:\n",
@@ -236,12 +237,12 @@ void benchHybrid(const Args& a, std::ofstream& csv) {
          "raw_flicker,denoised_flicker,reference_spp\n";
   for (const std::string& name : a.scenes) {
     const Setup s = setupScene(name, a.out, true);
-    const app::Reference ref = app::loadOrRenderReference(
+    const harness::Reference ref = harness::loadOrRenderReference(
         {&s.scene, s.view, a.hybridWidth, a.hybridHeight, 8}, a.hybridReferenceSpp);
     for (SamplerKind kind : kKinds) {
       HybridFigure f;
       for (int seed = 1; seed <= a.seeds; ++seed)
-        runHybrid(*ctx, s, ref, kind, uint32_t(seed), a, 1.0 / a.seeds, f);
+        runHybrid(s, ref, kind, uint32_t(seed), a, 1.0 / a.seeds, f);
       std::printf("  %-14s %-7s %9.4f %9.4f | %9.4f %9.4f\n", name.c_str(), samplerName(kind),
                   f.raw, f.denoised, f.rawFlicker, f.denoisedFlicker);
       csv << name << ',' << a.hybridWidth << ',' << a.hybridHeight << ',' << kHybridFrames << ','

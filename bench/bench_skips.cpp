@@ -5,7 +5,7 @@
 // not apply to a scene (it has that light class, say) is listed as such.
 //
 // Every skip acts on the tracer's side of the frame, so the time compared is that stage's
-// (refit + hit rebuild + tracing, HybridFrameTimes::cpuMs): the G-buffer pass on llvmpipe
+// (refit + hit rebuild + tracing, FrameTimes::cpuMs): the G-buffer pass on llvmpipe
 // shares the cores and its time swings by +-10 % between identical runs, which hid the
 // few-percent effects. Skip-on and skip-off runs alternate and each keeps its best of
 // --repeats, so a busy spell hits both alike. The converged row is whole frames (process
@@ -21,7 +21,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/sample_maps.h"
+#include "hybrid/sample_maps.h"
 #include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
@@ -33,7 +33,7 @@ PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
 namespace photovr {
 namespace {
 
-using SppMaps = std::array<const std::vector<uint16_t>*, 2>;
+using SppMaps = StereoSampleMaps;
 
 struct Config {
   std::string out = "out/bench";
@@ -75,7 +75,7 @@ void timeOnce(HybridRenderer& renderer, const Scene& scene, const Config& o, con
   ConvergenceMonitor monitor;  // every repeat renders the same frames: one estimate suffices
   double ms = 0.0;
   for (int f = 0; f < o.frames; ++f) {
-    HybridFrameTimes times;
+    FrameTimes times;
     const auto images = renderer.render(eyesOf(scene, o.width, o.height, uint32_t(f)), 2,
                                         uint32_t(f), &times, maps);
     ms += times.cpuMs();
@@ -167,9 +167,9 @@ Scene sceneNamed(const std::string& name) {
   return s;
 }
 
-void benchScene(const std::string& name, bool layers, const Config& o, Printer& p) {
+void benchScene(const std::string& name, const Config& o, Printer& p) {
   const Scene scene = sceneNamed(name);
-  HybridRenderer base(scene, o.width, o.height, layers, TraceSettings{});
+  HybridRenderer base(scene, o.width, o.height, TraceSettings{});
   // The skip-on configuration is timed once per row: the spread of those identical timings
   // is the noise floor below which a row's saving means nothing.
   double lowest = 1e30, highest = 0.0;
@@ -184,15 +184,16 @@ void benchScene(const std::string& name, bool layers, const Config& o, Printer& 
     }
     TraceSettings settings;
     settings.skips.disable(skip);
-    HybridRenderer renderer(scene, o.width, o.height, layers, settings);
+    HybridRenderer renderer(scene, o.width, o.height, settings);
     const auto [on, off] = timePair(base, {}, renderer, {}, scene, o);
     noted(on);
     p.row(name, skip, "", on, off);
   }
-  const auto maps = app::lensSampleMaps("hidden-area", StereoLayout::dk2(o.width, o.height), 1);
-  const auto [hidden, uniform] = timePair(base, {&maps[0], &maps[1]}, base, {}, scene, o);
+  const auto maps =
+      lensSampleMaps(SampleMapKind::HiddenArea, StereoLayout::dk2(o.width, o.height), 1);
+  const auto [hidden, uniform] = timePair(base, maps, base, {}, scene, o);
   noted(uniform);
-  p.row(name, "hidden-area", app::describeSampleMaps(maps), hidden, uniform);
+  p.row(name, "hidden-area", describeSampleMaps(maps), hidden, uniform);
   convergedRow(base, scene, name, o, p);
   std::printf("%-9s noise: the identical all-skips-on timing ranged %.1f-%.1f ms (%.0f %%)\n",
               name.c_str(), lowest, highest, 100.0 * (highest / lowest - 1.0));
@@ -213,7 +214,6 @@ int run(const Options& options) {
   o.frames = options.integer("--frames", o.frames, ConvergenceMonitor::kMinFrames, 100000);
   o.repeats = options.integer("--repeats", o.repeats, 1, 1000);
   const std::unique_ptr<gl::Context> ctx = gl::Context::createHeadless();
-  const bool layers = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::printf(
       "bench_skips: hybrid, %dx%d x 2 eyes, 1 spp, %d frames, tracer-stage ms per frame "
       "(converged: whole-frame CPU ms), best of %d; GL: %s\n",
@@ -224,7 +224,7 @@ int run(const Options& options) {
   Printer p{std::ofstream(o.out + "/bench_skips.csv")};
   p.csv << "scene,skip,on_ms_per_frame,off_ms_per_frame,time_saved,on_relmse,off_relmse,"
            "time_saved_at_equal_error,on_rays_per_frame,off_rays_per_frame,note\n";
-  for (const std::string& name : sceneNames()) benchScene(name, layers, o, p);
+  for (const std::string& name : sceneNames()) benchScene(name, o, p);
   std::printf("wrote %s/bench_skips.csv\n", o.out.c_str());
   return 0;
 }

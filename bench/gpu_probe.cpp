@@ -112,10 +112,10 @@ struct SceneRow {
   std::vector<gl::PassTiming> denoiserPasses;
 };
 
-SceneRow probeScene(const std::string& name, const Config& c, bool layered) {
+SceneRow probeScene(const std::string& name, const Config& c) {
   const Scene scene = makeBuiltinScene(name);
   const gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(c.eyeW, c.eyeH, layered, gl::EyeRouting::Layered);
+  gl::GBufferPass pass(c.eyeW, c.eyeH, gl::EyeRouting::Layered);
   hmd::LensModel lens;
   lens.panel.hResolution = c.panelW, lens.panel.vResolution = c.panelH;
   const std::array<FovTangents, 2> fov = {FovTangents::dk2LeftEye(),
@@ -208,12 +208,11 @@ Config parse(const Options& o) {
 int run(const Options& options) {
   const Config c = parse(options);
   const auto ctx = gl::Context::create({gl::Backend::EGL});
-  const bool layered = ctx->hasExtension("GL_ARB_shader_viewport_layer_array");
   std::printf("gpu_probe: %s; eyes %dx%d x 2, panel %dx%d\n", ctx->renderer().c_str(), c.eyeW,
               c.eyeH, c.panelW, c.panelH);
   std::filesystem::create_directories(c.out);
   std::vector<SceneRow> rows;
-  for (const std::string& name : c.scenes) rows.push_back(probeScene(name, c, layered));
+  for (const std::string& name : c.scenes) rows.push_back(probeScene(name, c));
   report(rows, c);
   return 0;
 }

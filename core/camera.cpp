@@ -39,8 +39,8 @@ FovTangents FovTangents::widened(float radians) const {
   return {out(left, vertical), out(right, vertical), out(up, horizontal), out(down, horizontal)};
 }
 
-StereoLayout StereoLayout::dk2(int fieldWidth, int fieldHeight, float overscanRadians) {
-  const FovTangents field = FovTangents::dk2LeftEye();
+StereoLayout StereoLayout::forField(const FovTangents& field, int fieldWidth, int fieldHeight,
+                                    float overscanRadians) {
   StereoLayout l;
   l.overscan = overscanRadians;
   l.leftField = field;

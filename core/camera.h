@@ -51,8 +51,14 @@ struct StereoLayout {
   FovTangents leftFov = FovTangents::dk2LeftEye();    // the buffer's; the right eye mirrors it
   FovTangents leftField = FovTangents::dk2LeftEye();  // the lens's field the panel shows
   float overscan = 0.0f;                              // radians beyond the field
-  // The DK2's field at fieldWidth x fieldHeight, widened by 'overscanRadians' per side.
-  static StereoLayout dk2(int fieldWidth, int fieldHeight, float overscanRadians = 0.0f);
+  // A headset's field ('leftField', the right eye mirrored) at fieldWidth x fieldHeight,
+  // widened by 'overscanRadians' per side (hmd/headset_description.h builds it).
+  static StereoLayout forField(const FovTangents& leftField, int fieldWidth, int fieldHeight,
+                               float overscanRadians = 0.0f);
+  // The DK2's (forField of FovTangents::dk2LeftEye()), for tests and benches.
+  static StereoLayout dk2(int fieldWidth, int fieldHeight, float overscanRadians = 0.0f) {
+    return forField(FovTangents::dk2LeftEye(), fieldWidth, fieldHeight, overscanRadians);
+  }
   FovTangents fov(Eye e) const { return e == Eye::Left ? leftFov : leftFov.mirrored(); }
   FovTangents field(Eye e) const { return e == Eye::Left ? leftField : leftField.mirrored(); }
 };

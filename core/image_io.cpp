@@ -154,4 +154,15 @@ uint8_t toSrgb8(float linear) {
   return uint8_t(std::lround(e * 255.0f));
 }
 
+Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height) {
+  Image8 image(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::u8vec4 c = pixels[size_t(height - 1 - y) * width + x];
+      uint8_t* p = image.at(x, y);
+      p[0] = c.r, p[1] = c.g, p[2] = c.b;
+    }
+  return image;
+}
+
 }  // namespace photovr

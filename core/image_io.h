@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 namespace photovr {
 
 struct ImageF {
@@ -39,6 +41,9 @@ void writeImage(const std::string& path, const Image8& image);
 ImageF readImageF(const std::string& path);
 // Reads an 8-bit image, expanded to RGBA.
 Image8 readImageRGBA8(const std::string& path);
+
+// RGBA8 rows bottom-up (as GL reads them back) to a top-down RGB image.
+Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height);
 
 // sRGB transfer function (IEC 61966-2-1).
 float linearToSrgb(float linear);

@@ -9,11 +9,14 @@
 
 namespace photovr {
 
+// The instance a pixel that saw no surface records (shaders/gbuffer.frag clears to it).
+constexpr uint32_t kNoHitInstance = 0xFFFFFFFFu;
+
 struct VisibilityRecord {
-  uint32_t instance = 0xFFFFFFFFu;  // index into Scene::instances; 0xFFFFFFFF = no hit
+  uint32_t instance = kNoHitInstance;  // index into Scene::instances
   uint32_t triangle = 0;
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
-  bool hit() const { return instance != 0xFFFFFFFFu; }
+  bool hit() const { return instance != kNoHitInstance; }
 };
 
 // World-space triangle of an instance.

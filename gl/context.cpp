@@ -85,7 +85,7 @@ void Context::initialize(ProcLoader loader) {
                        otherBackends(backend()));
 }
 
-bool Context::hasExtension(const std::string& ext) const {
+bool Context::currentContextHasExtension(const std::string& ext) {
   GLint n = 0;
   api::GetIntegerv(GL_NUM_EXTENSIONS, &n);
   for (GLint i = 0; i < n; ++i)

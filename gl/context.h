@@ -51,7 +51,8 @@ class Context {
 
   const std::string& version() const { return version_; }
   const std::string& renderer() const { return renderer_; }
-  bool hasExtension(const std::string& name) const;
+  bool hasExtension(const std::string& name) const { return currentContextHasExtension(name); }
+  static bool currentContextHasExtension(const std::string& name);
 
  protected:
   using ProcLoader = void* (*)(const char* name);

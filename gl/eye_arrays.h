@@ -9,6 +9,13 @@
 
 namespace photovr::gl {
 
+// Both eyes' linear colour (float RGB(A)) and reversed-Z depth as 2-layer arrays (layer =
+// eye), by GL name: what the compositor re-projects (an EyeArrays upload, or the denoiser's
+// output).
+struct EyeTextures {
+  unsigned color = 0, depth = 0;
+};
+
 class EyeArrays {
  public:
   EyeArrays(int width, int height);  // cleared to 0

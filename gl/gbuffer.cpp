@@ -48,10 +48,12 @@ void readLayer(GLuint tex, const TargetFormat& f, int w, int h, int layer, std::
 
 }  // namespace
 
-GBufferPass::GBufferPass(int w, int h, bool hasLayerExtension, EyeRouting routing)
+GBufferPass::GBufferPass(int w, int h, EyeRouting routing)
     : width_(w),
       height_(h),
-      routing_(hasLayerExtension ? routing : EyeRouting::SideBySide),
+      routing_(Context::currentContextHasExtension("GL_ARB_shader_viewport_layer_array")
+                   ? routing
+                   : EyeRouting::SideBySide),
       program_({{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}},
                routing_ == EyeRouting::Layered
                    ? std::vector<std::string>{"PHOTOVR_LAYERED 1\n#extension "

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
+#include "core/visibility.h"
 #include "gl/program.h"
 #include "gl/scene_gpu.h"
 
@@ -32,6 +33,11 @@ struct GBufferImage {
   std::vector<glm::vec2> motion;
   std::vector<float> depth;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
+  // Pixel i's visibility target as a record (instance kNoHitInstance: the background).
+  VisibilityRecord record(size_t i) const {
+    const glm::uvec4 v = visibility[i];
+    return {v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)};
+  }
 };
 
 enum class EyeRouting {
@@ -41,8 +47,9 @@ enum class EyeRouting {
 
 class GBufferPass {
  public:
-  // Chooses Layered when the context has the extension, unless 'routing' forces one.
-  GBufferPass(int eyeWidth, int eyeHeight, bool hasLayerExtension, EyeRouting routing);
+  // Layered unless the current context lacks GL_ARB_shader_viewport_layer_array (then
+  // SideBySide); 'routing' SideBySide forces the fallback.
+  GBufferPass(int eyeWidth, int eyeHeight, EyeRouting routing = EyeRouting::Layered);
   ~GBufferPass();
   GBufferPass(const GBufferPass&) = delete;
   GBufferPass& operator=(const GBufferPass&) = delete;

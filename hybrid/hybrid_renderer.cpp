@@ -6,11 +6,19 @@
 #include "gl/gbuffer_readback.h"
 
 namespace photovr {
-HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, bool hasLayerExtension,
-                               const TraceSettings& settings)
+
+void FrameTimes::add(const FrameTimes& t) {
+  gbufferMs += t.gbufferMs, readbackMs += t.readbackMs;
+  rebuildMs += t.rebuildMs, traceMs += t.traceMs, refitMs += t.refitMs;
+  for (int e = 0; e < 2; ++e) eyeTraceMs[e] += t.eyeTraceMs[e];
+  denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
+  rays += t.rays, outsideHits += t.outsideHits, rejectedSamples += t.rejectedSamples;
+}
+
+HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSettings& settings)
     : scene_(scene),
       gpu_(scene),
-      pass_(w, h, hasLayerExtension, gl::EyeRouting::Layered),
+      pass_(w, h),
       embree_(scene, settings.skips),
       lights_(scene, settings.skips),
       ctx_{scene, embree_, lights_, settings} {}
@@ -23,12 +31,25 @@ void HybridRenderer::drawGBuffer(const std::array<EyeCamera, 2>& eyes) {
   hasPrevious_ = true;
 }
 
-std::array<EyeImage, 2> HybridRenderer::trace(
-    const std::array<gl::GBufferImage, 2>& g, const std::array<EyeCamera, 2>& eyes, int eyeCount,
-    uint32_t frame, HybridFrameTimes& t,
-    const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
+void HybridRenderer::readGBuffer(int eyeCount, std::array<gl::GBufferImage, 2>& into,
+                                 FrameTimes& t) {
+  const auto t0 = Clock::now();
+  pass_.finish();
+  const auto t1 = Clock::now();
+  for (int e = 0; e < eyeCount; ++e) pass_.read(e, into[e]);
+  t.gbufferMs = msBetween(t0, t1);
+  t.readbackMs = msSince(t1);
+}
+
+std::array<EyeImage, 2> HybridRenderer::trace(const std::array<gl::GBufferImage, 2>& g,
+                                              const std::array<EyeCamera, 2>& eyes, int eyeCount,
+                                              uint32_t frame, const TraceSettings& settings,
+                                              FrameTimes& t, const StereoSampleMaps& samples) {
   std::array<EyeImage, 2> out;
-  if (!ctx_.settings.skips.refit) {  // a static scene never needs this (work_skips.h)
+  TraceContext ctx = ctx_;
+  ctx.settings = settings;
+  ctx.settings.skips = ctx_.settings.skips;  // the scene was built for these
+  if (!ctx.settings.skips.refit) {           // a static scene never needs this (work_skips.h)
     const auto t0 = Clock::now();
     embree_.updateInstanceTransforms();
     t.refitMs += msBetween(t0, Clock::now());
@@ -36,9 +57,10 @@ std::array<EyeImage, 2> HybridRenderer::trace(
   for (int e = 0; e < eyeCount; ++e) {
     HybridEyeStats s;
     out[e] =
-        traceFromGBuffer(ctx_, g[e], eyes[e], uint32_t(e), frame, sppMaps[e], &s, &eyeBuffers_[e]);
+        traceFromGBuffer(ctx, g[e], eyes[e], uint32_t(e), frame, samples[e], &s, &eyeBuffers_[e]);
     t.rebuildMs += s.rebuildMs;
     t.traceMs += s.traceMs;
+    t.eyeTraceMs[e] += s.rebuildMs + s.traceMs;
     t.outsideHits += s.outsideHits;
     t.rays += out[e].rays;
     t.rejectedSamples += out[e].rejectedSamples;
@@ -46,19 +68,16 @@ std::array<EyeImage, 2> HybridRenderer::trace(
   return out;
 }
 
-std::array<EyeImage, 2> HybridRenderer::render(
-    const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame, HybridFrameTimes* times,
-    const std::array<const std::vector<uint16_t>*, 2>& sppMaps) {
+std::array<EyeImage, 2> HybridRenderer::render(const std::array<EyeCamera, 2>& eyes, int eyeCount,
+                                               uint32_t frame, FrameTimes* times,
+                                               const StereoSampleMaps& samples) {
   const auto t0 = Clock::now();
   drawGBuffer(eyes);
-  pass_.finish();
-  const auto t1 = Clock::now();
-  for (int e = 0; e < eyeCount; ++e) pass_.read(e, gbuffers_[e]);
-  const auto t2 = Clock::now();
-  HybridFrameTimes t;
-  t.gbufferMs = msBetween(t0, t1);
-  t.readbackMs = msBetween(t1, t2);
-  auto out = trace(gbuffers_, eyes, eyeCount, frame, t, sppMaps);
+  const double drawMs = msSince(t0);
+  FrameTimes t;
+  readGBuffer(eyeCount, gbuffers_, t);
+  t.gbufferMs += drawMs;  // draw calls, then the wait for GL to finish them
+  auto out = trace(gbuffers_, eyes, eyeCount, frame, ctx_.settings, t, samples);
   if (times) *times = t;
   return out;
 }
@@ -69,17 +88,15 @@ void HybridRenderer::recycle(std::array<EyeImage, 2>&& images) {
 }
 
 void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eyeCount,
-                                    bool pipelined, const FrameFn& onFrame,
-                                    HybridFrameTimes* totals) {
-  HybridFrameTimes sum;
+                                    bool pipelined, const FrameFn& onFrame, FrameTimes* totals) {
+  FrameTimes sum;
   if (!pipelined) {
     for (int f = 0; f < frames; ++f) {
-      HybridFrameTimes t;
+      FrameTimes t;
       auto images = render(cameras(uint32_t(f)), eyeCount, uint32_t(f), &t);
       onFrame(uint32_t(f), images);
       recycle(std::move(images));
-      sum.gbufferMs += t.gbufferMs, sum.readbackMs += t.readbackMs;
-      sum.rebuildMs += t.rebuildMs, sum.traceMs += t.traceMs, sum.refitMs += t.refitMs;
+      sum.add(t);
     }
   } else {
     // Stage times overlap here; gbufferMs counts only the time the CPU waited for GL.
@@ -97,7 +114,7 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
       const auto t0 = Clock::now();
       readback[f % 2].finish(gbuffers_);
       sum.gbufferMs += msBetween(t0, Clock::now());
-      auto images = trace(gbuffers_, current, eyeCount, uint32_t(f), sum, {});
+      auto images = trace(gbuffers_, current, eyeCount, uint32_t(f), ctx_.settings, sum, {});
       onFrame(uint32_t(f), images);
       recycle(std::move(images));
       current = next;

@@ -1,5 +1,7 @@
-// One hybrid frame: the stereo G-buffer in GL (one instanced draw per mesh for both eyes),
-// read back, each visible hit rebuilt from its visibility record and continued by Embree.
+// The hybrid's two halves: the stereo G-buffer in GL (one instanced draw per mesh for both
+// eyes), read back, and each visible hit rebuilt from its visibility record and continued
+// by Embree. hybrid/frame_pipeline.h builds the whole frame on it (pt, denoiser, display);
+// tests of the hybrid itself use it directly.
 #pragma once
 
 #include <array>
@@ -14,31 +16,46 @@
 #include "hybrid/hybrid_tracer.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
+#include "trace/sample_map.h"
 
 namespace photovr {
 
-struct HybridFrameTimes {
-  double gbufferMs = 0.0;   // GL: draw both eyes and wait for them
+// Stage times of a frame (FramePipeline fills the pt and finish() ones too).
+struct FrameTimes {
+  double gbufferMs = 0.0;   // GL: draw both eyes and wait for them (pt: the guides' draw)
   double readbackMs = 0.0;  // GL -> CPU copy of the G-buffer layers
   double rebuildMs = 0.0;   // visibility records -> exact hits
-  double traceMs = 0.0;     // path continuation
-  double refitMs = 0.0;     // BVH top-level re-commit (only with the 'refit' skip off)
+  double traceMs = 0.0;     // path continuation (pt: whole paths), both eyes
+  std::array<double, 2> eyeTraceMs{};  // per eye: its rebuild and trace
+  double refitMs = 0.0;                // BVH top-level re-commit (only with 'refit' off)
+  double denoiseMs = 0.0;              // FramePipeline's finish: denoiser or upload, wall
+  double denoisePassMs = 0.0;          // the denoiser's passes, glFinish-bracketed (timed)
   uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
   double cpuMs() const { return refitMs + rebuildMs + traceMs; }  // the tracer's share
   double totalMs() const { return gbufferMs + readbackMs + cpuMs(); }
+  void add(const FrameTimes& t);  // sums every field
 };
 
 class HybridRenderer {
  public:
   // The GL context must be current. Keeps a reference to 'scene'.
-  HybridRenderer(const Scene& scene, int eyeWidth, int eyeHeight, bool hasLayerExtension,
-                 const TraceSettings& settings);
+  HybridRenderer(const Scene& scene, int eyeWidth, int eyeHeight, const TraceSettings& settings);
 
   // Renders 'eyeCount' (1 or 2) eyes of frame 'frame'; a mono view passes the same camera
   // twice and eyeCount 1.
   std::array<EyeImage, 2> render(const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame,
-                                 HybridFrameTimes* times,
-                                 const std::array<const std::vector<uint16_t>*, 2>& sppMaps = {});
+                                 FrameTimes* times, const StereoSampleMaps& samples = {});
+
+  // The same in stages, for a caller that traces on another thread (FramePipeline's
+  // background worker): GL thread: drawGBuffer, then readGBuffer into 'into' (its storage
+  // reused); any thread: trace, with the given settings (spp, bounces, seed, sampler; the
+  // skips stay the constructor's).
+  void drawGBuffer(const std::array<EyeCamera, 2>& eyes);
+  void readGBuffer(int eyeCount, std::array<gl::GBufferImage, 2>& into, FrameTimes& t);
+  std::array<EyeImage, 2> trace(const std::array<gl::GBufferImage, 2>& g,
+                                const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame,
+                                const TraceSettings& settings, FrameTimes& t,
+                                const StereoSampleMaps& samples);
 
   // A sequence of frames. Pipelined: the G-buffer of frame N + 1 is drawn and its read-back
   // (pixel buffer objects) queued before frame N is traced, so GL work overlaps tracing;
@@ -46,7 +63,7 @@ class HybridRenderer {
   using CameraFn = std::function<std::array<EyeCamera, 2>(uint32_t frame)>;
   using FrameFn = std::function<void(uint32_t frame, std::array<EyeImage, 2>& images)>;
   void renderSequence(const CameraFn& cameras, int frames, int eyeCount, bool pipelined,
-                      const FrameFn& onFrame, HybridFrameTimes* totals);
+                      const FrameFn& onFrame, FrameTimes* totals);
 
   // Hands a frame's images back when the caller is done with them: the next frame is traced
   // into their storage instead of fresh memory (hybrid_tracer.h, HybridEyeBuffers).
@@ -58,6 +75,12 @@ class HybridRenderer {
   EmbreeScene& embree() { return embree_; }  // e.g. to attach a RayRecorder (bench/)
   const TraceContext& traceContext() const { return ctx_; }
   void setSeed(uint32_t seed) { ctx_.settings.seed = seed; }
+  // What render() and renderSequence() trace with from now on (the skips stay).
+  void setSettings(const TraceSettings& s) {
+    const WorkSkips skips = ctx_.settings.skips;
+    ctx_.settings = s;
+    ctx_.settings.skips = skips;
+  }
 
  private:
   const Scene& scene_;
@@ -68,11 +91,6 @@ class HybridRenderer {
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;
-  void drawGBuffer(const std::array<EyeCamera, 2>& eyes);
-  std::array<EyeImage, 2> trace(const std::array<gl::GBufferImage, 2>& g,
-                                const std::array<EyeCamera, 2>& eyes, int eyeCount, uint32_t frame,
-                                HybridFrameTimes& t,
-                                const std::array<const std::vector<uint16_t>*, 2>& sppMaps);
 
   std::array<glm::mat4, 2> previousViewProjection_{};
   bool hasPrevious_ = false;

@@ -21,7 +21,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 }  // namespace
 
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
-                          uint32_t eye, uint32_t frame, const std::vector<uint16_t>* sppMap,
+                          uint32_t eye, uint32_t frame, const SampleMap& samples,
                           HybridEyeStats* stats, HybridEyeBuffers* reuse) {
   HybridEyeBuffers local;
   HybridEyeBuffers& buffers = reuse ? *reuse : local;
@@ -33,22 +33,21 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0};
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const auto t0 = Clock::now();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>&
-                                                                      r) {
-    uint64_t out = 0;
-    for (size_t i = r.begin(); i < r.end(); ++i) {
-      const glm::uvec4 v = g.visibility[i];
-      const VisibilityRecord rec{v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)};
-      if (!rec.hit() || !isValidRecord(ctx.scene, rec)) {
-        hits[i] = RebuiltHit{};
-        continue;
-      }
-      const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-      hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, cam.pixelRay(x, y));
-      out += hits[i].outside;
-    }
-    outside += out;
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+        uint64_t out = 0;
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+          const VisibilityRecord rec = g.record(i);
+          if (!rec.hit() || !isValidRecord(ctx.scene, rec)) {
+            hits[i] = RebuiltHit{};
+            continue;
+          }
+          const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
+          hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, cam.pixelRay(x, y));
+          out += hits[i].outside;
+        }
+        outside += out;
+      });
   const auto t1 = Clock::now();
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
@@ -57,15 +56,15 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
           const glm::vec3 dir = cam.pixelRay(x, y);
-          if (g.visibility[i].x == 0xFFFFFFFFu) {  // background: the environment, untraced
-            if (!ctx.settings.skips.skyPixels) {   // ... unless that skip is off
+          if (!g.record(i).hit()) {               // background: the environment, untraced
+            if (!ctx.settings.skips.skyPixels) {  // ... unless that skip is off
               ++tileRays;
               if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity).hit) ++tileSkyHits;
             }
             img.color[i] = ctx.lights.environmentRadiance(dir);
             continue;
           }
-          const uint32_t spp = sppMap ? (*sppMap)[i] : uint32_t(ctx.settings.samplesPerPixel);
+          const uint32_t spp = samples.samplesAt(i, uint32_t(ctx.settings.samplesPerPixel));
           img.normal[i] = hits[i].surface.shadingNormal;
           img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
           if (spp == 0) continue;

@@ -10,6 +10,7 @@
 #include "gl/gbuffer.h"
 #include "hybrid/hit_rebuild.h"
 #include "trace/path_tracer.h"
+#include "trace/sample_map.h"
 
 namespace photovr {
 
@@ -23,10 +24,8 @@ struct HybridEyeStats {
   uint64_t skyRayHits = 0;
 };
 
-// 'samplesPerPixel': optional per-pixel sample counts (a lens-matched density map or a
-// hidden-area mask with 0 = not traced), in G-buffer order; null = ctx.settings' uniform
-// count. Rows bottom-up like the G-buffer. Fills color, the AOVs and the demodulated
-// diffuse/specular denoiser inputs.
+// 'samples': per-pixel sample counts (trace/sample_map.h; uniform = ctx.settings' count).
+// Fills color, the AOVs and the demodulated diffuse/specular denoiser inputs.
 //
 // 'reuse': storage kept from frame to frame, or null. The traced image is built in
 // reuse->image (give the returned image back there when done with it) and the rebuilt hits
@@ -38,7 +37,7 @@ struct HybridEyeBuffers {
 };
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuffer,
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,
-                          const std::vector<uint16_t>* samplesPerPixel, HybridEyeStats* stats,
+                          const SampleMap& samples, HybridEyeStats* stats,
                           HybridEyeBuffers* reuse = nullptr);
 
 }  // namespace photovr

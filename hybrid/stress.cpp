@@ -81,7 +81,7 @@ Images render(StressCase c, const Budget& b) {
   TraceSettings settings;
   settings.samplesPerPixel = b.spp;
   settings.maxBounces = c.bounces;
-  HybridRenderer renderer(c.scene, b.width, b.height, true, settings);
+  HybridRenderer renderer(c.scene, b.width, b.height, settings);
   Images out;
   for (int f = 0; f < b.frames; ++f) {
     const EyeCamera cam = cameraOf(c, b, uint32_t(f));

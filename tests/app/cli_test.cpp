@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/memory.h"
+#include "core/memory.h"
 #include "core/image_io.h"
 #include "tests/app/cli_util.h"
 
@@ -78,7 +78,7 @@ TEST(Cli, FrameLargerThanMemoryIsAUsageError) {
       {"view --width 4096 --height 4096 --overscan 10", 6768.0 * 6620.0}};
   int ran = 0;
   for (const auto& [command, eyePixels] : commands) {
-    if (app::kBytesPerEyePixel * eyePixels <= physical) {
+    if (kBytesPerEyePixel * eyePixels <= physical) {
       std::cout << "not run: '" << command << "' fits in this machine's memory\n";
       continue;
     }

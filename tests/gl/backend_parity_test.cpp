@@ -18,8 +18,7 @@ std::array<gl::GBufferImage, 2> renderWith(gl::Context& ctx, const Scene& scene)
       rig.eye(Eye::Left, 48, 54, samplePosition(SamplerKind::Sobol, 3)),
       rig.eye(Eye::Right, 48, 54, samplePosition(SamplerKind::Sobol, 3))};
   gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(48, 54, ctx.hasExtension("GL_ARB_shader_viewport_layer_array"),
-                       gl::EyeRouting::Layered);
+  gl::GBufferPass pass(48, 54, gl::EyeRouting::Layered);
   const glm::mat4 vp0 = eyes[0].unjitteredProjection() * eyes[0].view();
   const glm::mat4 vp1 = eyes[1].unjitteredProjection() * eyes[1].view();
   pass.render(gpu, eyes, {vp0, vp1});
@@ -46,7 +45,7 @@ TEST(BackendParity, OSMesaAndEGLRenderTheSameGBuffer) {
       ASSERT_EQ(a[e].depth[i], b[e].depth[i]);
       ASSERT_EQ(a[e].normal[i], b[e].normal[i]);
       ASSERT_EQ(a[e].baseColor[i], b[e].baseColor[i]);
-      covered += a[e].visibility[i].x != 0xFFFFFFFFu;
+      covered += a[e].visibility[i].x != kNoHitInstance;
     }
     EXPECT_EQ(covered, a[e].visibility.size());  // inside the closed box
   }

@@ -26,10 +26,9 @@ struct Frame {
 Frame render(const Scene& scene, const EyeCamera& cam,
              gl::EyeRouting routing = gl::EyeRouting::Layered,
              const std::array<glm::mat4, 2>* previous = nullptr) {
-  gl::Context& ctx = osmesaContext();
+  osmesaContext();  // makes it current
   gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(cam.width, cam.height,
-                       ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), routing);
+  gl::GBufferPass pass(cam.width, cam.height, routing);
   const glm::mat4 vp = cam.unjitteredProjection() * cam.view();
   pass.render(gpu, {cam, cam}, previous ? *previous : std::array<glm::mat4, 2>{vp, vp});
   return {{pass.read(0), pass.read(1)}};
@@ -53,7 +52,7 @@ Scene singleRectangle(Material material, glm::mat4 transform) {
 
 size_t covered(const gl::GBufferImage& img) {
   size_t n = 0;
-  for (const glm::uvec4& v : img.visibility) n += v.x != 0xFFFFFFFFu;
+  for (const glm::uvec4& v : img.visibility) n += v.x != kNoHitInstance;
   return n;
 }
 
@@ -103,8 +102,8 @@ TEST(GBufferFeatures, AlphaMaskDiscardsBelowTheCutoff) {
   const gl::GBufferImage& img = f.eye[0];
   // The rectangle fills the view (tan 0.5 at 1 m < 1 m half-size); uv.x = 0.5 at the centre.
   for (int y = 0; y < 16; ++y) {
-    EXPECT_NE(img.visibility[img.index(2, y)].x, 0xFFFFFFFFu);
-    EXPECT_EQ(img.visibility[img.index(13, y)].x, 0xFFFFFFFFu) << "row " << y;
+    EXPECT_NE(img.visibility[img.index(2, y)].x, kNoHitInstance);
+    EXPECT_EQ(img.visibility[img.index(13, y)].x, kNoHitInstance) << "row " << y;
   }
   Scene opaque = s;
   opaque.materials[0].alphaMode = AlphaMode::Opaque;  // the same texture, mask ignored
@@ -162,8 +161,8 @@ TEST(GBufferFeatures, SideBySideFallbackMatchesLayeredRouting) {
   gl::SceneGpu gpu(s);
   const std::array<glm::mat4, 2> vp = {eyes[0].unjitteredProjection() * eyes[0].view(),
                                        eyes[1].unjitteredProjection() * eyes[1].view()};
-  gl::GBufferPass layered(40, 30, true, gl::EyeRouting::Layered);
-  gl::GBufferPass sbs(40, 30, true, gl::EyeRouting::SideBySide);
+  gl::GBufferPass layered(40, 30, gl::EyeRouting::Layered);
+  gl::GBufferPass sbs(40, 30, gl::EyeRouting::SideBySide);
   layered.render(gpu, eyes, vp);
   sbs.render(gpu, eyes, vp);
   for (int e = 0; e < 2; ++e) {

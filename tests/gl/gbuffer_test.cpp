@@ -28,10 +28,9 @@ struct Rendered {
 
 Rendered renderGBuffer(const Scene& scene, const std::array<EyeCamera, 2>& eyes,
                        gl::EyeRouting routing = gl::EyeRouting::Layered) {
-  gl::Context& ctx = osmesaContext();
+  osmesaContext();  // makes it current
   gl::SceneGpu gpu(scene);
-  gl::GBufferPass pass(eyes[0].width, eyes[0].height,
-                       ctx.hasExtension("GL_ARB_shader_viewport_layer_array"), routing);
+  gl::GBufferPass pass(eyes[0].width, eyes[0].height, routing);
   gl::resetDrawStats();
   const std::array<glm::mat4, 2> previous = {eyes[0].unjitteredProjection() * eyes[0].view(),
                                              eyes[1].unjitteredProjection() * eyes[1].view()};
@@ -90,7 +89,7 @@ TEST(GBuffer, VisibilityRecordRebuildsTheAnalyticHitPoint) {
     for (int y = 0; y < 32; ++y)
       for (int x = 0; x < 40; ++x) {
         const glm::uvec4 v = r.eye[e].visibility[r.eye[e].index(x, y)];
-        if (v.x == 0xFFFFFFFFu) continue;
+        if (v.x == kNoHitInstance) continue;
         const VisibilityRecord rec{v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)};
         ASSERT_TRUE(isValidRecord(scene, rec));
         // Analytic: the ray of this pixel's jittered sample hits the plane dot(n, x - p) = 0.

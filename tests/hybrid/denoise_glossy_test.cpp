@@ -63,7 +63,7 @@ TEST(DenoiseGlossy, TallBlockReflectionsAreFilteredOverTheLobe) {
   // well under the differences measured below.
   const std::vector<glm::vec3> ref = testing::referenceImage(scene, eyeOf(scene, 0), 32, 16, 77);
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kW, kH, true, TraceSettings{});
+  HybridRenderer renderer(scene, kW, kH, TraceSettings{});
   gl::DenoiseParams before;  // the footprint until the block was measured
   before.specularFootprint = 16.0f;
   before.specularMaxStep = 16.0f;

@@ -129,7 +129,7 @@ struct SeedRuns {
 
 SeedRuns runSeeds(const Case& c, const Scene& scene, const std::vector<glm::vec3>& ref) {
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kW, kH, true, TraceSettings{});
+  HybridRenderer renderer(scene, kW, kH, TraceSettings{});
   gl::Denoiser denoiser(kW, kH), blind(kW, kH, zeroVarianceGuide());
   SeedRuns runs;
   for (uint32_t seed = 0; seed < kSeeds; ++seed) {

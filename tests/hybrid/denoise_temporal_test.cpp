@@ -66,7 +66,7 @@ double reprojectedChange(const std::vector<glm::vec3>& now, const std::vector<gl
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       const size_t i = g.index(x, y);
-      if (g.visibility[i].x == 0xFFFFFFFFu) continue;
+      if (g.visibility[i].x == kNoHitInstance) continue;
       const int px = int(std::lround(x + g.motion[i].x)), py = int(std::lround(y + g.motion[i].y));
       if (px < 0 || py < 0 || px >= kW || py >= kH) continue;
       diff += std::abs(luminance(now[i]) - luminance(before[g.index(px, py)]));
@@ -79,7 +79,7 @@ Sequence run(const Scene& scene, bool moving, gl::DenoiseMode mode) {
   testing::osmesaContext();
   TraceSettings settings;
   settings.sampler = kSampler;
-  HybridRenderer renderer(scene, kW, kH, true, settings);
+  HybridRenderer renderer(scene, kW, kH, settings);
   gl::Denoiser denoiser(kW, kH);
   Sequence s;
   std::vector<glm::vec3> previous;

@@ -182,7 +182,7 @@ Paired renderBoth(const Scene& scene, int frames) {
   testing::osmesaContext();
   TraceSettings hs;
   hs.seed = 1;
-  HybridRenderer renderer(scene, kWidth, kHeight, true, hs);
+  HybridRenderer renderer(scene, kWidth, kHeight, hs);
   TraceSettings ps = hs;
   ps.seed = 2;  // independent noise
   const TraceContext& hc = renderer.traceContext();
@@ -322,7 +322,7 @@ void expectEmissionOfThePanel(const EyeImage& img, const EyeCamera& cam, const c
 TEST(HybridEmission, ADirectlySeenEmitterShowsExactlyItsEmittedRadiance) {
   const Scene scene = lampScene();
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  HybridRenderer renderer(scene, kWidth, kHeight, TraceSettings{});
   const EyeCamera cam = monoCamera(scene, 0);
   expectEmissionOfThePanel(renderer.render({cam, cam}, 1, 0, nullptr)[0], cam, "hybrid");
   expectEmissionOfThePanel(renderPathTraced(renderer.traceContext(), cam, 0, 0), cam, "pt");
@@ -382,7 +382,7 @@ TEST_P(HybridConvergence, ErrorAgainstAConvergedReferenceFallsLikeOneOverN) {
   for (SamplerKind kind : {SamplerKind::Random, SamplerKind::Sobol}) {
     TraceSettings settings;
     settings.sampler = kind;
-    HybridRenderer renderer(scene, kWidth, kHeight, true, settings);
+    HybridRenderer renderer(scene, kWidth, kHeight, settings);
     for (bool hybrid : {true, false}) {
       const std::vector<double> e = convergence(scene, ref, renderer, hybrid, seeds);
       const std::string what =
@@ -449,7 +449,7 @@ TEST(HybridGrazing, PlaneLitAtGrazingAnglesMatchesTheAnalyticAnswer) {
   testing::osmesaContext();
   TraceSettings settings;
   settings.maxBounces = 0;  // direct light only: deterministic for a delta light
-  HybridRenderer renderer(s, kWidth, kHeight, true, settings);
+  HybridRenderer renderer(s, kWidth, kHeight, settings);
   const EyeCamera cam = monoCamera(s, 0);
   const EyeImage hy = renderer.render({cam, cam}, 1, 0, nullptr)[0];
   const EyeImage pt = renderPathTraced(renderer.traceContext(), cam, 0, 0);
@@ -482,7 +482,7 @@ namespace {
 TEST(HybridPipeline, PipelinedReadBackGivesTheSameFramesAsSequential) {
   const Scene scene = mirrorScene();
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  HybridRenderer renderer(scene, kWidth, kHeight, TraceSettings{});
   std::vector<std::vector<glm::vec3>> frames[2];
   for (int pipelined = 0; pipelined < 2; ++pipelined)
     renderer.renderSequence(
@@ -503,11 +503,11 @@ TEST(HybridPipeline, PipelinedReadBackGivesTheSameFramesAsSequential) {
 TEST(HybridSampleMap, ZeroSamplePixelsAreNotTracedAndCountsFollowTheMap) {
   const Scene scene = mirrorScene();
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  HybridRenderer renderer(scene, kWidth, kHeight, TraceSettings{});
   std::vector<uint16_t> map(size_t(kWidth) * kHeight);
   for (size_t i = 0; i < map.size(); ++i) map[i] = uint16_t(i % 3);  // 0, 1, 2, 0, ...
   const EyeCamera cam = monoCamera(scene, 0);
-  const EyeImage img = renderer.render({cam, cam}, 1, 0, nullptr, {&map, nullptr})[0];
+  const EyeImage img = renderer.render({cam, cam}, 1, 0, nullptr, {SampleMap(map), SampleMap()})[0];
   for (size_t i = 0; i < map.size(); ++i) {
     if (img.depth[i] == 0.0f) continue;  // background: the environment, never traced
     EXPECT_EQ(img.samples[i], map[i]) << i;
@@ -529,14 +529,15 @@ namespace {
 TEST(SkippedWork, HiddenAreaPixelsChangeNothingElse) {
   const Scene scene = makeBuiltinScene("cornell");
   testing::osmesaContext();
-  HybridRenderer renderer(scene, kWidth, kHeight, true, TraceSettings{});
+  HybridRenderer renderer(scene, kWidth, kHeight, TraceSettings{});
   std::vector<uint16_t> mask(size_t(kWidth) * kHeight, 1);
   for (size_t i = 0; i < mask.size(); i += 7) mask[i] = 0;  // any pattern of skipped pixels
   StereoRig rig;
   rig.head = poseOf(scene.cameras[0]);
   const EyeCamera cam = rig.eye(Eye::Left, kWidth, kHeight, samplePosition(SamplerKind::Sobol, 0));
   const EyeImage all = renderer.render({cam, cam}, 1, 0, nullptr)[0];
-  const EyeImage some = renderer.render({cam, cam}, 1, 0, nullptr, {&mask, nullptr})[0];
+  const EyeImage some =
+      renderer.render({cam, cam}, 1, 0, nullptr, {SampleMap(mask), SampleMap()})[0];
   size_t skipped = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
     if (mask[i] == 0) {

@@ -61,11 +61,11 @@ TEST(StorageReuse, HybridFrameIntoRecycledStorageMatchesFreshOne) {
   const Scene scene = makeBuiltinScene("atrium");
   testing::osmesaContext();
   const std::vector<uint16_t> spp = checkerSpp();
-  const std::array<const std::vector<uint16_t>*, 2> maps = {&spp, &spp};
-  HybridRenderer fresh(scene, kW, kH, true, TraceSettings{});
+  const StereoSampleMaps maps = {SampleMap(spp), SampleMap(spp)};
+  HybridRenderer fresh(scene, kW, kH, TraceSettings{});
   const auto expected = fresh.render(eyes(scene, 1, false), 2, 1, nullptr, maps);
 
-  HybridRenderer reused(scene, kW, kH, true, TraceSettings{});
+  HybridRenderer reused(scene, kW, kH, TraceSettings{});
   reused.recycle(reused.render(eyes(scene, 0, true), 2, 0, nullptr));  // every pixel traced
   const auto got = reused.render(eyes(scene, 1, false), 2, 1, nullptr, maps);
   for (int e = 0; e < 2; ++e) expectIdentical(got[e], expected[e]);

@@ -23,14 +23,14 @@ HybridRun render(const Scene& scene, const WorkSkips& skips, int frames) {
   testing::osmesaContext();
   TraceSettings settings;
   settings.skips = skips;
-  HybridRenderer renderer(scene, kWidth, kHeight, true, settings);
+  HybridRenderer renderer(scene, kWidth, kHeight, settings);
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
   HybridRun run;
   for (int f = 0; f < frames; ++f) {
     const EyeCamera cam =
         rig.eye(Eye::Left, kWidth, kHeight, samplePosition(SamplerKind::Sobol, uint32_t(f)));
-    HybridFrameTimes t;
+    FrameTimes t;
     const EyeImage img = renderer.render({cam, cam}, 1, uint32_t(f), &t)[0];
     run.colors.push_back(img.color);
     run.rays += img.rays;

@@ -1,0 +1,26 @@
+// What one stereo frame asks of the frame pipeline (frame_pipeline.h): typed, parsed once
+// by the command line and carried as is.
+#pragma once
+
+#include <cstdint>
+
+#include "core/camera.h"
+#include "gl/denoiser.h"
+#include "hybrid/sample_maps.h"
+
+namespace photovr {
+
+enum class FrameMode { Hybrid, PathTraced };
+const char* frameModeName(FrameMode mode);  // "hybrid", "pt"
+
+// What one frame asks for; may change from frame to frame.
+struct FrameSettings {
+  FrameMode mode = FrameMode::Hybrid;
+  int spp = 1, bounces = 8;
+  uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::Sobol;
+  SampleMapKind sampleMap = SampleMapKind::Uniform;  // hybrid only
+  gl::DenoiseMode denoise = gl::DenoiseMode::Off;
+};
+
+}  // namespace photovr

@@ -1,0 +1,85 @@
+#include "trace/trace_output.h"
+
+#include "core/tonemap.h"
+
+namespace photovr {
+namespace {
+
+void meanInto(std::vector<glm::vec3>& sum, const std::vector<glm::vec3>& frame, float w) {
+  for (size_t i = 0; i < sum.size() && i < frame.size(); ++i) sum[i] += (frame[i] - sum[i]) * w;
+}
+
+}  // namespace
+
+void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar) {
+  if (framesSoFar == 0) {
+    sum = frame;
+    return;
+  }
+  const float w = 1.0f / float(framesSoFar + 1);
+  for (auto [s, f] : {std::pair{&sum.color, &frame.color},
+                      {&sum.albedo, &frame.albedo},
+                      {&sum.diffuse, &frame.diffuse},
+                      {&sum.specular, &frame.specular},
+                      {&sum.diffuseAlbedo, &frame.diffuseAlbedo},
+                      {&sum.specularAlbedo, &frame.specularAlbedo}})
+    meanInto(*s, *f, w);
+  for (size_t i = 0; i < sum.samples.size(); ++i) sum.samples[i] += frame.samples[i];
+  sum.rays += frame.rays;
+  sum.rejectedSamples += frame.rejectedSamples;
+}
+
+ImageF toImage(const std::vector<glm::vec3>& values, int w, int h) {
+  ImageF img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3& v = values[size_t(h - 1 - y) * w + x];
+      float* d = img.at(x, y);
+      d[0] = v.x, d[1] = v.y, d[2] = v.z;
+    }
+  return img;
+}
+
+ImageF toImage(const std::vector<float>& values, int w, int h) {
+  ImageF img(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) *img.at(x, y) = values[size_t(h - 1 - y) * w + x];
+  return img;
+}
+
+std::vector<std::string> writeEyeImages(const EyeImage& e, const std::string& dir) {
+  std::vector<std::string> paths;
+  auto rgb = [&](const char* name, const std::vector<glm::vec3>& v) {
+    if (v.empty()) return;
+    paths.push_back(dir + "/" + name);
+    writeImage(paths.back(), toImage(v, e.width, e.height));
+  };
+  rgb("color.exr", e.color);
+  rgb("albedo.exr", e.albedo);
+  rgb("normal.exr", e.normal);
+  paths.push_back(dir + "/depth.exr");
+  writeImage(paths.back(), toImage(e.depth, e.width, e.height));
+  std::vector<float> samples(e.samples.begin(), e.samples.end());
+  paths.push_back(dir + "/samples.exr");
+  writeImage(paths.back(), toImage(samples, e.width, e.height));
+  rgb("diffuse.exr", e.diffuse);
+  rgb("specular.exr", e.specular);
+  rgb("diffuse_albedo.exr", e.diffuseAlbedo);
+  rgb("specular_albedo.exr", e.specularAlbedo);
+  return paths;
+}
+
+Image8 sideBySide(const std::vector<const EyeImage*>& eyes, float exposure) {
+  const int w = eyes[0]->width, h = eyes[0]->height;
+  Image8 out(w * int(eyes.size()), h, 3);
+  for (size_t e = 0; e < eyes.size(); ++e)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const glm::u8vec3 c = displayColor(eyes[e]->color[size_t(h - 1 - y) * w + x], exposure);
+        uint8_t* d = out.at(int(e) * w + x, y);
+        d[0] = c.r, d[1] = c.g, d[2] = c.b;
+      }
+  return out;
+}
+
+}  // namespace photovr

@@ -1,0 +1,26 @@
+// Traced eye images (pt and hybrid): accumulation over frames and the files written.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+#include "trace/path_tracer.h"
+
+namespace photovr {
+
+// Running mean over frames of equal weight (frames share their settings).
+void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar);
+
+// color.exr, albedo.exr, normal.exr, depth.exr, samples.exr, and where present the
+// denoiser inputs diffuse.exr, specular.exr, diffuse_albedo.exr, specular_albedo.exr.
+std::vector<std::string> writeEyeImages(const EyeImage& eye, const std::string& dir);
+
+// The eyes side by side, tone-mapped for people.
+Image8 sideBySide(const std::vector<const EyeImage*>& eyes, float exposure);
+
+// Bottom-up rows (GL's and the tracer's) to a top-down float image.
+ImageF toImage(const std::vector<glm::vec3>& values, int w, int h);
+ImageF toImage(const std::vector<float>& values, int w, int h);
+
+}  // namespace photovr
