@@ -3,6 +3,7 @@
 #include <tbb/info.h>
 
 #include "core/camera.h"
+#include "hmd/headset_description.h"
 
 namespace photovr::harness {
 
@@ -66,7 +67,8 @@ std::vector<BenchConfig> benchMatrix(const std::vector<std::string>& scenes, boo
         c.denoise = mode == FrameMode::PathTraced ? gl::DenoiseMode::Off
                     : quick                       ? gl::DenoiseMode::Temporal
                                                   : gl::DenoiseMode::Full;
-        c.width = kDk2EyeWidth, c.height = kDk2EyeHeight;
+        c.width = hmd::HeadsetDescription::dk2().eyeWidth;
+        c.height = hmd::HeadsetDescription::dk2().eyeHeight;
         c.frames = quick ? 1 : 4, c.scored = false, c.bounces = quick ? 1 : c.bounces;
       });
     }

@@ -13,6 +13,7 @@
 #include "harness/bench_format.h"
 #include "harness/bench_report.h"
 #include "harness/reference_cache.h"
+#include "hmd/headset_description.h"
 
 namespace photovr::harness {
 namespace {
@@ -78,7 +79,8 @@ void measureLimits(const std::vector<std::string>& scenes, bool quick, const std
     for (const TraceLimit& t : measureTraceLimits(s.bench, size.width, size.height, *context))
       report.traceLimits.push_back(t);
   }
-  for (const auto& [w, h] : {std::pair{size.width, size.height}, {kDk2EyeWidth, kDk2EyeHeight}})
+  const hmd::HeadsetDescription dk2 = hmd::HeadsetDescription::dk2();
+  for (const auto& [w, h] : {std::pair{size.width, size.height}, {dk2.eyeWidth, dk2.eyeHeight}})
     report.glLimits.push_back(measureGlLimits(w, h));
 }
 

@@ -9,6 +9,7 @@
 #include "gl/gbuffer_readback.h"
 #include "hybrid/frame_pipeline.h"
 #include "trace/pixel_estimate.h"
+#include "hmd/headset_description.h"
 
 namespace photovr::harness {
 namespace {
@@ -55,7 +56,7 @@ void measure(TraceLimit& out, EmbreeScene& embree, Frame&& frame) {
 std::array<TraceLimit, 2> measureTraceLimits(const BenchScene& s, int w, int h,
                                              gl::Context& context) {
   PipelineConfig config;
-  config.layout = StereoLayout::dk2(w, h);
+  config.layout = hmd::HeadsetDescription::dk2().layout(w, h);
   FramePipeline pipeline(*s.scene, config, &context);
   const auto cams = eyeCameras(s.view, w, h, 0, SamplerKind::Sobol);
   std::array<TraceLimit, 2> out{TraceLimit{s.scene->name, "hybrid"},

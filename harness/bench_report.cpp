@@ -1,6 +1,7 @@
 #include "harness/bench_report.h"
 
 #include "harness/bench_format.h"
+#include "hmd/headset_description.h"
 
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -86,7 +87,7 @@ SceneSummary summarize(const std::string& scene, const std::vector<ConfigResult>
            c.sampling == SampleMapKind::Uniform && c.threads == 0;
   });
   for (const ConfigResult& r : all)
-    if (r.config.scene == scene && r.config.width == kDk2EyeWidth)
+    if (r.config.scene == scene && r.config.width == hmd::HeadsetDescription::dk2().eyeWidth)
       s.dk2PeakRssMiB = std::max(s.dk2PeakRssMiB, r.peakRssMiB);
   if (hybrid && pt) {
     const FrameRecord& p = pt->frames[std::min<size_t>(16, pt->frames.size()) - 1];

@@ -15,6 +15,7 @@
 #include "core/perceptual_metrics.h"
 #include "core/stopwatch.h"
 #include "hybrid/frame_pipeline.h"
+#include "hmd/headset_description.h"
 
 namespace photovr::harness {
 namespace {
@@ -59,7 +60,7 @@ struct Run {
 
   static PipelineConfig configOf(const BenchConfig& c) {
     PipelineConfig p;
-    p.layout = StereoLayout::dk2(c.width, c.height);
+    p.layout = hmd::HeadsetDescription::dk2().layout(c.width, c.height);
     p.timeDenoiserPasses = true;
     return p;
   }
