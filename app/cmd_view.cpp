@@ -244,6 +244,7 @@ struct Session {
     p.lens = c.headset.lens;
     p.forDisplay = true;
     pipeline = std::make_unique<FramePipeline>(c.scene, p, context.get());
+    pipeline->prepare(c.settings);
     compositor =
         std::make_unique<display::Compositor>(c.headset, c.eyes, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);

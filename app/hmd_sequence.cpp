@@ -144,7 +144,9 @@ class HmdSequence {
         pipeline_(r.scene, pipelineConfig(r, eyes_, headset), context_.get()),
         compositor_(headset, eyes_, o.panelWidth, o.panelHeight, o.rotation),
         panelFiles_(r.outDir),
-        log_(r.outDir) {}
+        log_(r.outDir) {
+    pipeline_.prepare(frameSettingsOf(r));  // as before: set up before the first frame
+  }
 
   // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
   void frame(int k, const FrameTimes& t, const Pose& trackedA, const Pose& trackedB) {

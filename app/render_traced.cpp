@@ -145,6 +145,7 @@ int renderTracedMode(const RenderRequest& r) {
   config.denoiser.exposure = r.exposure;
   const auto t0 = Clock::now();
   FramePipeline pipeline(r.scene, config, context.get());
+  pipeline.prepare(settings);  // the denoiser's set-up is not a frame's
   const double buildMs = 1e3 * secondsSince(t0);
   if (settings.mode == FrameMode::Hybrid)
     std::printf("sampling: %s (%s)\n", sampleMapKindName(r.sampling),

@@ -69,7 +69,9 @@ struct Run {
   }
 
   Run(const BenchConfig& cfg, const BenchScene& s, gl::Context& ctx)
-      : c(cfg), view(s.view), pipeline(*s.scene, configOf(cfg), needsGl(cfg) ? &ctx : nullptr) {}
+      : c(cfg), view(s.view), pipeline(*s.scene, configOf(cfg), needsGl(cfg) ? &ctx : nullptr) {
+    pipeline.prepare(settingsOf(cfg));  // the denoiser's set-up is not a frame's
+  }
 
   // Frame f's stage times and rays into 'r'; the frame's wall time is the pipeline's.
   StereoFrame render(uint32_t f, FrameRecord& r) {

@@ -126,17 +126,28 @@ void FramePipeline::trace(Job& job) {
   }
 }
 
+gl::Denoiser& FramePipeline::denoiserForUse() {
+  if (!denoiser_) {
+    requireGl("the denoiser");
+    denoiser_ = std::make_unique<gl::Denoiser>(config_.layout.width, config_.layout.height,
+                                               config_.denoiser);
+    denoiser_->setTiming(config_.timeDenoiserPasses);
+  }
+  return *denoiser_;
+}
+
+void FramePipeline::prepare(const FrameSettings& s) {
+  if (s.denoise != gl::DenoiseMode::Off) denoiserForUse();
+  if (s.mode == FrameMode::Hybrid) sampleMaps(s.sampleMap, s.spp);
+}
+
 // The denoiser's history carries over only between denoised frames of one mode: a frame of
 // the other renderer, or one shown undenoised, starts a new one.
 void FramePipeline::finish(StereoFrame& f) {
   const FrameRequest& r = f.request;
   const auto t0 = Clock::now();
   if (r.settings.denoise != gl::DenoiseMode::Off) {
-    if (!denoiser_) {
-      denoiser_ = std::make_unique<gl::Denoiser>(config_.layout.width, config_.layout.height,
-                                                 config_.denoiser);
-      denoiser_->setTiming(config_.timeDenoiserPasses);
-    }
+    denoiserForUse();
     const bool reset = !historyValid_ || historyMode_ != r.settings.mode;
     const DenoiseInput left = makeDenoiseInput(f.images[0]);
     const DenoiseInput right = makeDenoiseInput(f.images[r.eyeCount - 1]);

@@ -75,6 +75,11 @@ class FramePipeline {
   FramePipeline(const FramePipeline&) = delete;
   FramePipeline& operator=(const FramePipeline&) = delete;
 
+  // Makes up front what frames with these settings need (the denoiser: its textures and
+  // programs; the sample maps), so that the first frame's times are the frame's alone.
+  // Frames make it themselves otherwise.
+  void prepare(const FrameSettings& settings);
+
   // Sequential: begin, trace and finish one frame.
   StereoFrame render(const FrameRequest& request);
 
@@ -116,6 +121,7 @@ class FramePipeline {
   void trace(Job& job);
   void finish(StereoFrame& frame);
   void requireGl(const char* what) const;
+  gl::Denoiser& denoiserForUse();
   void workerLoop();
 
   PipelineConfig config_;
