@@ -43,6 +43,7 @@ struct Config {
   int repeats = 5;          // best of N timed runs: the least disturbed by the rest of the machine
   std::string scene;        // one built-in scene only (for profiling); empty: all
   bool renderOnly = false;  // no recording or replay: a profile then sees only the tracer
+  BatchCall batchCall = BatchCall::Stream;  // how the wavefront tracer calls Embree
 };
 
 struct Row {
@@ -139,6 +140,7 @@ Row measure(const std::string& name, const Scene& scene, int threads, const Conf
   const LightSet lights(scene);
   TraceSettings settings;
   settings.samplesPerPixel = opt.spp;
+  settings.batchCall = opt.batchCall;
   const TraceContext ctx{scene, embree, lights, settings};
   StereoRig rig;
   rig.head = poseOf(scene.cameras.at(0));
@@ -190,10 +192,12 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
 
 const char* const kUsage =
     "usage: photovr_bench_trace [--out DIR] [--width W] [--height H] [--spp N] [--repeats N]\n"
-    "                           [--scene NAME] [--render-only]\n"
+    "                           [--scene NAME] [--render-only] [--batch stream|single]\n"
     "The tracer against bare rtcIntersect1/rtcOccluded1 on the rays it cast, one eye, per\n"
     "built-in scene, on 1 thread and all; writes bench_trace.csv to --out (out/bench).\n"
-    "--render-only: no recording or replay (for a profiler).\n";
+    "--render-only: no recording or replay (for a profiler).\n"
+    "--batch: the wavefront tracer's Embree calls, rtcIntersect1M/rtcOccluded1M streams (the\n"
+    "default) or one rtcIntersect1/rtcOccluded1 per ray (what Embree 4 keeps).\n";
 
 Config parse(const Options& o) {
   Config c;
@@ -204,6 +208,10 @@ Config parse(const Options& o) {
   c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
   if (o.has("--scene")) c.scene = builtinSceneArgument(o.text("--scene", ""));
   c.renderOnly = o.has("--render-only");
+  const std::string call = o.text("--batch", "stream");
+  if (call != "stream" && call != "single")
+    throw std::runtime_error("--batch: expected stream or single, got '" + call + "'");
+  c.batchCall = call == "single" ? BatchCall::Single : BatchCall::Stream;
   return c;
 }
 
@@ -240,6 +248,6 @@ int run(const Config& opt) {
 int main(int argc, char** argv) {
   return photovr::benchMain(
       argc, argv, photovr::kUsage,
-      {"--out", "--width", "--height", "--spp", "--repeats", "--scene"}, {"--render-only"},
-      [](const photovr::Options& o) { return photovr::run(photovr::parse(o)); });
+      {"--out", "--width", "--height", "--spp", "--repeats", "--scene", "--batch"},
+      {"--render-only"}, [](const photovr::Options& o) { return photovr::run(photovr::parse(o)); });
 }

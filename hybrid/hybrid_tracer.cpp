@@ -10,7 +10,7 @@
 
 #include "core/stopwatch.h"
 #include "hybrid/hit_rebuild.h"
-#include "trace/pixel_estimate.h"
+#include "trace/path_batcher.h"
 
 namespace photovr {
 namespace {
@@ -53,6 +53,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
         enableFlushToZero();
         uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0, tileSkyHits = 0;
+        thread_local PathBatcher batcher;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
           const glm::vec3 dir = cam.pixelRay(x, y);
@@ -68,14 +69,17 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           img.normal[i] = hits[i].surface.shadingNormal;
           img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
           if (spp == 0) continue;
-          const SampleCounters counters{
-              uint32_t(i), eye, frame, 0, 0, ctx.settings.seed, spp, ctx.settings.sampler};
-          const PixelEstimate est = estimatePixel(ctx, hits[i].surface, dir, counters, spp);
-          storePixel(img, i, est);
-          tileRays += est.rays;
-          tileRejected += est.rejected;
+          if (batcher.full()) batcher.flush(ctx, img, tileRays, tileRejected);
+          batcher.beginPixel(i);
+          SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
+                                  ctx.settings.sampler};
+          for (uint32_t s = 0; s < spp; ++s) {
+            counters.sample = s;
+            batcher.addHit(hits[i].surface, dir, counters);
+          }
           ++tileTraced;
         }
+        batcher.flush(ctx, img, tileRays, tileRejected);
         rays += tileRays;
         rejected += tileRejected;
         traced += tileTraced;

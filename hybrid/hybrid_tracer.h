@@ -1,5 +1,5 @@
 // The CPU half of a hybrid frame: each visible pixel of a G-buffer is rebuilt exactly and
-// its paths continued by the tracer's own functions (continuePath), identical in
+// its paths continued by the tracer's own batched tracer (trace/wavefront.h), identical in
 // expectation to pure path tracing with the same camera and jitter.
 #pragma once
 
@@ -16,7 +16,7 @@ namespace photovr {
 
 struct HybridEyeStats {
   double rebuildMs = 0.0;     // visibility record -> exact surface hit
-  double traceMs = 0.0;       // continuePath over all samples
+  double traceMs = 0.0;       // the paths of all samples (wavefront tracer)
   uint64_t outsideHits = 0;   // shared-edge raster/ray disagreements, clamped and counted
   uint64_t tracedPixels = 0;  // pixels with samples > 0 that saw a surface
   // With the 'sky-pixels' skip off: background pixels whose Embree ray hit a surface

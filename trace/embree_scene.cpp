@@ -8,6 +8,7 @@
 #include <xmmintrin.h>
 
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -177,13 +178,9 @@ static RTCRayHit makeRayHit(const glm::vec3& o, const glm::vec3& d, float tnear,
   return rh;
 }
 
-TraceHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnear,
-                                float tfar) const {
-  if (recorder_) recorder_->record({o, tnear, d, tfar, RecordedRay::Kind::Intersect});
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
-  rtcIntersect1(impl_->top, &ctx, &rh);
+namespace {
+
+TraceHit traceHitOf(const RTCRayHit& rh) {
   TraceHit h;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.hit = true;
@@ -195,6 +192,40 @@ TraceHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tn
   return h;
 }
 
+static_assert(sizeof(BatchRay) == sizeof(RTCRay) && alignof(BatchRay) == alignof(RTCRay));
+static_assert(offsetof(BatchRay, tfar) == offsetof(RTCRay, tfar) &&
+              offsetof(BatchRay, flags) == offsetof(RTCRay, flags));
+static_assert(sizeof(BatchRayHit) == sizeof(RTCRayHit) &&
+              offsetof(BatchRayHit, ng) == offsetof(RTCRayHit, hit.Ng_x) &&
+              offsetof(BatchRayHit, primID) == offsetof(RTCRayHit, hit.primID) &&
+              offsetof(BatchRayHit, instID) == offsetof(RTCRayHit, hit.instID));
+static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1 && RTC_INVALID_GEOMETRY_ID == ~0u);
+
+RTCRay* embreeRays(BatchRay* rays) {
+  return reinterpret_cast<RTCRay*>(rays);
+}
+RTCRayHit* embreeRays(BatchRayHit* rays) {
+  return reinterpret_cast<RTCRayHit*>(rays);
+}
+
+void initContext(RTCIntersectContext& ctx, bool coherent) {
+  rtcInitIntersectContext(&ctx);
+  ctx.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+}
+
+}  // namespace
+
+TraceHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnear,
+                                float tfar) const {
+  if (recorder_) recorder_->record({o, tnear, d, tfar, RecordedRay::Kind::Intersect});
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
+  rtcIntersect1(impl_->top, &ctx, &rh);
+  return traceHitOf(rh);
+}
+
 bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) const {
   if (recorder_) recorder_->record({o, tnear, d, tfar, RecordedRay::Kind::Occluded});
   RTCIntersectContext ctx;
@@ -202,6 +233,37 @@ bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, 
   RTCRay ray = makeRayHit(o, d, tnear, tfar).ray;
   rtcOccluded1(impl_->top, &ctx, &ray);
   return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+void EmbreeScene::intersectBatch(BatchRayHit* rays, size_t count, BatchCall call,
+                                 bool coherent) const {
+  if (recorder_)
+    for (size_t i = 0; i < count; ++i) {
+      const BatchRay& r = rays[i].ray;
+      recorder_->record({r.origin, r.tnear, r.dir, r.tfar, RecordedRay::Kind::Intersect});
+    }
+  RTCIntersectContext ctx;
+  initContext(ctx, coherent);
+  if (call == BatchCall::Single) {
+    for (size_t i = 0; i < count; ++i) rtcIntersect1(impl_->top, &ctx, embreeRays(rays + i));
+    return;
+  }
+  rtcIntersect1M(impl_->top, &ctx, embreeRays(rays), unsigned(count), sizeof(BatchRayHit));
+}
+
+void EmbreeScene::occludedBatch(BatchRay* rays, size_t count, BatchCall call, bool coherent) const {
+  if (recorder_)
+    for (size_t i = 0; i < count; ++i) {
+      const BatchRay& r = rays[i];
+      recorder_->record({r.origin, r.tnear, r.dir, r.tfar, RecordedRay::Kind::Occluded});
+    }
+  RTCIntersectContext ctx;
+  initContext(ctx, coherent);
+  if (call == BatchCall::Single) {
+    for (size_t i = 0; i < count; ++i) rtcOccluded1(impl_->top, &ctx, embreeRays(rays + i));
+    return;
+  }
+  rtcOccluded1M(impl_->top, &ctx, embreeRays(rays), unsigned(count), sizeof(BatchRay));
 }
 
 ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count) const {

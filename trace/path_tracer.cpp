@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "trace/bsdf.h"
+#include "trace/path_stages.h"
 #include "trace/sampling.h"
 
 namespace photovr {
@@ -18,44 +19,47 @@ constexpr float kShadowRayShorten = 1e-4f;
 // denoiser wants the albedo of what the mirror shows; thesis §3.3.3).
 constexpr float kMirrorRoughness = 0.1f;
 
-struct PathVertex {
-  SurfaceHit hit;
-  glm::vec3 wo;
-};
-
-// Next-event estimation at one vertex, MIS-weighted against BSDF sampling for lights with
-// area (Veach 1997 §9.2, power heuristic).
-BsdfLobes directLight(const TraceContext& ctx, const PathVertex& v, const Frame& frame,
-                      const BsdfVertex& bsdf, Sampler& sampler, uint64_t& rays) {
-  if (ctx.lights.empty()) return {};
+// Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
+// lights with area (Veach 1997 sec. 9.2, power heuristic): the shadow ray and what it adds
+// unblocked, weighted by the throughput and lobe split as they are at this vertex.
+bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame,
+                 const BsdfVertex& bsdf, Sampler& sampler, ShadowRay& shadow) {
+  if (ctx.lights.empty()) return false;
   const float uSelect = sampler.next();
-  const LightSample ls = ctx.lights.sample(v.hit.position, uSelect, sampler.next2());
-  if (!ls.valid() || glm::dot(ls.direction, v.hit.geometricNormal) <= 0.0f) return {};
+  const LightSample ls = ctx.lights.sample(p.hit.position, uSelect, sampler.next2());
+  if (!ls.valid() || glm::dot(ls.direction, p.hit.geometricNormal) <= 0.0f) return false;
   const glm::vec3 wiL = frame.toLocal(ls.direction);
   const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
   const BsdfLobes& f = e.f;
-  if (f.total() == glm::vec3(0.0f)) return {};
+  if (f.total() == glm::vec3(0.0f)) return false;
   // The shadow ray runs from the offset origin to the light point itself (not along the
   // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
   // otherwise carry the ray into the light's plane before the shortened end.
-  const glm::vec3 origin = offsetRayOrigin(v.hit, ls.direction);
+  const glm::vec3 origin = offsetRayOrigin(p.hit, ls.direction);
   glm::vec3 shadowDir = ls.direction;
   float tfar = ls.distance;
   if (std::isfinite(ls.distance)) {
-    const glm::vec3 toLight = v.hit.position + ls.direction * ls.distance - origin;
+    const glm::vec3 toLight = p.hit.position + ls.direction * ls.distance - origin;
     tfar = glm::length(toLight);
     shadowDir = toLight / tfar;
     if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
   }
-  ++rays;
-  if (ctx.embree.occluded(origin, shadowDir, 0.0f, tfar)) return {};
+  shadow.ray = BatchRay::make(origin, shadowDir, 0.0f, tfar);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
   const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
-  return {f.diffuse * scale, f.specular * scale};
+  if (p.depth == 0) {
+    shadow.diffuse = f.diffuse * scale;
+    shadow.specular = f.specular * scale;
+  } else {
+    const glm::vec3 c = p.beta * (f.diffuse * scale + f.specular * scale);
+    shadow.diffuse = c * p.share;
+    shadow.specular = c * (1.0f - p.share);
+  }
+  return true;
 }
 
 // Emission or environment found by a BSDF-sampled ray, MIS-weighted against NEE.
-glm::vec3 foundLight(const TraceContext& ctx, const PathVertex& from, const TraceHit& th,
+glm::vec3 foundLight(const TraceContext& ctx, const PathState& from, const TraceHit& th,
                      const SurfaceHit* to, const glm::vec3& wi, float bsdfPdf) {
   if (!th.hit) {
     const glm::vec3 le = ctx.lights.environmentRadiance(wi);
@@ -88,64 +92,99 @@ void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& sha
 
 }  // namespace
 
-PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const glm::vec3& wo,
-                        SampleCounters counters) {
-  PathResult result;
-  PathVertex v{start, wo};
-  glm::vec3 beta(1.0f), share(1.0f);  // share: diffuse fraction of the first bounce
-  bool albedoSet = false;
-  uint64_t rays = 0;
-  const PathSampler path = PathSampler::make(counters);
-  for (int depth = 0;; ++depth) {
-    Sampler sampler = path.bounce(uint32_t(depth));
-    if (!albedoSet && (v.hit.bsdf.roughness >= kMirrorRoughness || v.hit.bsdf.metallic < 1.0f)) {
-      result.albedo = v.hit.bsdf.baseColor;
-      albedoSet = true;
-    }
-    const Frame frame = Frame::fromZ(v.hit.shadingNormal);
-    const BsdfVertex bsdf = prepareBsdf(v.hit.bsdf, frame.toLocal(v.wo));
-    const BsdfLobes direct = directLight(ctx, v, frame, bsdf, sampler, rays);
-    if (depth == 0) {
-      result.diffuse += direct.diffuse;
-      result.specular += direct.specular;
-    } else {
-      addSplit(result, beta * direct.total(), share);
-    }
-    const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
-    if (!bs.valid()) break;
-    const glm::vec3 wi = frame.toWorld(bs.wi);
-    if (glm::dot(wi, v.hit.geometricNormal) <= 0.0f) break;  // shading normal leaked below
-    if (depth == 0) share = diffuseShare(bs);
-    beta *= bs.weight;
-    // Whether the path ends at what this ray finds: the bounce cap, or Russian roulette
-    // (thesis Algorithm 2: survive with the largest throughput channel, then rescale).
-    // Decided before the ray is traced (the same number from this vertex's sampler as
-    // after), so that a last hit is rebuilt only as far as its emission needs.
-    bool last = depth >= ctx.settings.maxBounces;
-    float survival = 1.0f;
-    if (!last && depth + 1 >= ctx.settings.russianRouletteDepth) {
-      survival = std::min(1.0f, std::max(beta.r, std::max(beta.g, beta.b)));
-      last = !(sampler.next() < survival);
-    }
-    const TraceHit th = ctx.embree.intersect(offsetRayOrigin(v.hit, wi), wi, 0.0f, kInfinity);
-    ++rays;
-    SurfaceHit next;
-    if (th.hit) {
-      next = last ? surfaceEmissionAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi)
-                  : surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, wi);
-    }
-    addSplit(result, beta * foundLight(ctx, v, th, th.hit ? &next : nullptr, wi, bs.pdf), share);
-    if (!th.hit || last) break;
-    beta /= survival;
-    v = {next, -wi};
+PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters) {
+  PathState p;
+  p.hit = hit;
+  p.wo = wo;
+  p.sampler = PathSampler::make(counters);
+  return p;
+}
+
+VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result, ShadowRay& shadow,
+                       BatchRay& bounce) {
+  Sampler sampler = p.sampler.bounce(p.depth);
+  if (!p.albedoSet && (p.hit.bsdf.roughness >= kMirrorRoughness || p.hit.bsdf.metallic < 1.0f)) {
+    result.albedo = p.hit.bsdf.baseColor;
+    p.albedoSet = true;
   }
-  if (!albedoSet) result.albedo = v.hit.bsdf.baseColor;
-  result.rays = uint32_t(rays);
+  const Frame frame = Frame::fromZ(p.hit.shadingNormal);
+  const BsdfVertex bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
+  VertexRays rays;
+  rays.shadow = directLight(ctx, p, frame, bsdf, sampler, shadow);
+  result.rays += rays.shadow;
+  const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
+  if (!bs.valid()) return rays;
+  const glm::vec3 wi = frame.toWorld(bs.wi);
+  if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return rays;  // shading normal leaked below
+  if (p.depth == 0) p.share = diffuseShare(bs);
+  p.beta *= bs.weight;
+  // Whether the path ends at what this ray finds: the bounce cap, or Russian roulette
+  // (thesis Algorithm 2: survive with the largest throughput channel, then rescale).
+  // Decided before the ray is traced (the same number from this vertex's sampler as
+  // after), so that a last hit is rebuilt only as far as its emission needs.
+  p.last = int(p.depth) >= ctx.settings.maxBounces;
+  p.survival = 1.0f;
+  if (!p.last && int(p.depth) + 1 >= ctx.settings.russianRouletteDepth) {
+    p.survival = std::min(1.0f, std::max(p.beta.r, std::max(p.beta.g, p.beta.b)));
+    p.last = !(sampler.next() < p.survival);
+  }
+  p.wi = wi;
+  p.bsdfPdf = bs.pdf;
+  bounce = BatchRay::make(offsetRayOrigin(p.hit, wi), wi, 0.0f, kInfinity);
+  ++result.rays;
+  rays.bounce = true;
+  return rays;
+}
+
+void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked) {
+  if (blocked) return;
+  result.diffuse += shadow.diffuse;
+  result.specular += shadow.specular;
+}
+
+bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, const TraceHit& th) {
+  SurfaceHit next;
+  if (th.hit) {
+    next = p.last ? surfaceEmissionAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi)
+                  : surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi);
+  }
+  addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
+           p.share);
+  if (!th.hit || p.last) return false;
+  p.beta /= p.survival;
+  p.hit = next;
+  p.wo = -p.wi;
+  ++p.depth;
+  return true;
+}
+
+void finishPath(const PathState& p, PathResult& result) {
+  if (!p.albedoSet) result.albedo = p.hit.bsdf.baseColor;
   if (!finite(result.diffuse) || !finite(result.specular)) {
     result.diffuse = result.specular = glm::vec3(0.0f);
     result.rejected = 1;
   }
   result.radiance = result.diffuse + result.specular;
+}
+
+// The scalar form of the batched tracer's loop: one path, each ray traced as it is made.
+PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const glm::vec3& wo,
+                        SampleCounters counters) {
+  PathResult result;
+  PathState path = startPath(start, wo, counters);
+  for (;;) {
+    ShadowRay shadow;
+    BatchRay bounce;
+    const VertexRays rays = shadeVertex(ctx, path, result, shadow, bounce);
+    if (rays.shadow) {
+      const BatchRay& r = shadow.ray;
+      resolveShadow(result, shadow, ctx.embree.occluded(r.origin, r.dir, r.tnear, r.tfar));
+    }
+    if (!rays.bounce) break;
+    const TraceHit th = ctx.embree.intersect(bounce.origin, bounce.dir, bounce.tnear, bounce.tfar);
+    if (!advancePath(ctx, path, result, th)) break;
+  }
+  finishPath(path, result);
   return result;
 }
 

@@ -23,6 +23,7 @@ struct TraceSettings {
   int russianRouletteDepth = 5;  // thesis Algorithm 2: roulette from depth 5
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;  // --sampler
+  BatchCall batchCall = BatchCall::Stream;   // how the batched tracer hands rays to Embree
   WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
                     // their EmbreeScene and LightSet with the same skips
 };

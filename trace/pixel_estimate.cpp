@@ -4,9 +4,7 @@
 
 namespace photovr {
 
-void addPath(PixelEstimate& e, const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-             const SampleCounters& counters) {
-  const PathResult r = continuePath(ctx, hit, -dir, counters);
+void addPath(PixelEstimate& e, const SurfaceHit& hit, const glm::vec3& dir, const PathResult& r) {
   e.diffuse += r.diffuse;
   e.specular += r.specular;
   e.albedo += r.albedo;
@@ -17,16 +15,6 @@ void addPath(PixelEstimate& e, const TraceContext& ctx, const SurfaceHit& hit, c
   e.rays += r.rays;
   e.rejected += r.rejected;
   ++e.samples;
-}
-
-PixelEstimate estimatePixel(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-                            SampleCounters counters, uint32_t spp) {
-  PixelEstimate e;
-  for (uint32_t s = 0; s < spp; ++s) {
-    counters.sample = s;
-    addPath(e, ctx, hit, dir, counters);
-  }
-  return e;
 }
 
 void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {

@@ -23,12 +23,8 @@ struct PixelEstimate {
 // so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
 constexpr float kMinDemodulationAlbedo = 1e-3f;
 
-// One path continued from 'hit', seen along the primary direction 'dir'.
-void addPath(PixelEstimate& e, const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-             const SampleCounters& counters);
-// The hybrid's pixel: 'spp' paths continued from the frame's one primary hit.
-PixelEstimate estimatePixel(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-                            SampleCounters counters, uint32_t spp);
+// One path continued from 'hit' (its result 'r'), seen along the primary direction 'dir'.
+void addPath(PixelEstimate& e, const SurfaceHit& hit, const glm::vec3& dir, const PathResult& r);
 
 // Writes colour (the mean over every sample, emission and environment included), the
 // demodulated lobes and their albedos (means over the samples that hit), the albedo AOV and

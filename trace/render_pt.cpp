@@ -1,18 +1,22 @@
 // Pure path tracing of an eye image: Embree primary rays through the same jittered pixel
-// positions the rasterizer uses, then continuePath(), in parallel over tiles.
+// positions the rasterizer uses, then the wavefront tracer (trace/wavefront.h), in parallel over
+// tiles.
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <limits>
 #include <utility>
 
 #include "trace/path_tracer.h"
-#include "trace/pixel_estimate.h"
+#include "trace/path_batcher.h"
 
 namespace photovr {
 namespace {
 
 constexpr int kTile = 16;  // 16 x 16 pixels: enough work per task, many tasks for balance
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 struct Counts {
   uint64_t rays = 0, rejected = 0;
@@ -23,37 +27,54 @@ struct Counts {
 // G-buffer samples too; with more, each sample has its own place in the pixel, so one
 // frame of N samples antialiases as N frames of one do. Depth and normal are the first
 // hit's (the G-buffer keeps one surface per pixel too).
-void tracePixel(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint32_t frame, int x,
-                int y, EyeImage& img, Counts& counts) {
-  const size_t i = img.index(x, y);
+//
+// A tile's primary rays go to Embree as one coherent batch, then its paths as batches of
+// the wavefront tracer.
+void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint32_t frame,
+               const tbb::blocked_range2d<int>& r, EyeImage& img, Counts& counts) {
   const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
-  SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
-                          ctx.settings.sampler};
-  PixelEstimate e;
-  for (uint32_t s = 0; s < spp; ++s) {
-    counters.sample = s;
-    const glm::vec2 p = glm::vec2(x + 0.5f, y + 0.5f) +
-                        samplePosition(ctx.settings.sampler, counters.sampleIndex());
-    const glm::vec3 dir = cam.rayDirection(p.x, p.y);
-    const TraceHit th =
-        ctx.embree.intersect(cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
-    ++e.rays;
-    if (!th.hit) {
-      e.emitted += ctx.lights.environmentRadiance(dir);
-      ++e.misses;
-      continue;
+  thread_local std::vector<BatchRayHit> primary;
+  thread_local PathBatcher batcher;
+  primary.clear();
+  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+    for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+      for (uint32_t s = 0; s < spp; ++s) {
+        const SampleCounters c{uint32_t(img.index(x, y)), eye, frame, s, 0, ctx.settings.seed, spp,
+                               ctx.settings.sampler};
+        const glm::vec2 p =
+            glm::vec2(x + 0.5f, y + 0.5f) + samplePosition(ctx.settings.sampler, c.sampleIndex());
+        primary.push_back(
+            {BatchRay::make(cam.pose.position, cam.rayDirection(p.x, p.y), 0.0f, kInfinity)});
+      }
+  ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall, true);
+  counts.rays += primary.size();
+  size_t j = 0;
+  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+    for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+      const size_t i = img.index(x, y);
+      if (batcher.full()) batcher.flush(ctx, img, counts.rays, counts.rejected);
+      batcher.beginPixel(i);
+      bool first = true;
+      for (uint32_t s = 0; s < spp; ++s, ++j) {
+        const glm::vec3& dir = primary[j].ray.dir;
+        const TraceHit th = primary[j].traceHit();
+        if (!th.hit) {
+          batcher.addMiss(ctx.lights.environmentRadiance(dir));
+          continue;
+        }
+        const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
+        if (first) {
+          img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
+          img.normal[i] = hit.shadingNormal;
+          first = false;
+        }
+        batcher.addHit(
+            hit, dir,
+            {uint32_t(i), eye, frame, s, 0, ctx.settings.seed, spp, ctx.settings.sampler});
+      }
     }
-    const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
-    if (e.samples == 0) {
-      img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
-      img.normal[i] = hit.shadingNormal;
-    }
-    addPath(e, ctx, hit, dir, counters);
-  }
-  storePixel(img, i, e);
-  counts.rays += e.rays;
-  counts.rejected += e.rejected;
+  batcher.flush(ctx, img, counts.rays, counts.rejected);
 }
 
 }  // namespace
@@ -67,9 +88,7 @@ EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_
                     [&](const tbb::blocked_range2d<int>& r) {
                       enableFlushToZero();
                       Counts counts;
-                      for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                        for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-                          tracePixel(ctx, cam, eye, frame, x, y, img, counts);
+                      traceTile(ctx, cam, eye, frame, r, img, counts);
                       rays += counts.rays;
                       rejected += counts.rejected;
                     });

@@ -1,0 +1,46 @@
+// Pixels' samples gathered into batches for the wavefront tracer (trace/wavefront.h), then
+// summed back per pixel in sample order, so that a pixel's estimate is the one a loop of
+// continuePath over its samples gives. The pure path tracer and the hybrid both feed it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "trace/pixel_estimate.h"
+#include "trace/wavefront.h"
+
+namespace photovr {
+
+class PathBatcher {
+ public:
+  // Paths per batch: 1024 path states (~190 kB) with their rays stay in L2 while each
+  // stage runs over them, and a 16 x 16 tile at 4 spp is one batch.
+  static constexpr size_t kBatchPaths = 1024;
+
+  // The samples added next belong to pixel 'pixel' of the image, until the next call.
+  void beginPixel(size_t pixel);
+  // A sample whose primary ray along 'dir' hit 'hit': its path is continued.
+  void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters);
+  // A sample whose primary ray left the scene and saw 'environment'.
+  void addMiss(const glm::vec3& environment);
+  bool full() const { return starts_.size() >= kBatchPaths; }
+  // Continues every queued path and stores each queued pixel into 'image' (storePixel);
+  // adds the paths' rays and rejected samples to the totals. Empties the batch.
+  void flush(const TraceContext& ctx, EyeImage& image, uint64_t& rays, uint64_t& rejected);
+
+ private:
+  struct Sample {
+    int32_t start = -1;  // index into starts_, or -1: a miss
+    glm::vec3 environment{0.0f};
+  };
+  struct Pixel {
+    size_t index = 0;
+    uint32_t firstSample = 0, samples = 0;
+  };
+  std::vector<PathStart> starts_;
+  std::vector<PathResult> results_;
+  std::vector<Sample> samples_;
+  std::vector<Pixel> pixels_;
+};
+
+}  // namespace photovr

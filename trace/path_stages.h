@@ -1,0 +1,59 @@
+// The steps of one path, each a function of the path's state alone, so that a scalar loop
+// (continuePath, the test reference) and the batched tracer (trace/wavefront.h) run the
+// same code and draw the same numbers: a path's result does not depend on how many other
+// paths travel with it, only on the ray answers Embree gives it.
+//
+// One bounce is shadeVertex (NEE and BSDF sampling at the current vertex: a shadow ray and
+// a bounce ray to trace), resolveShadow (the shadow ray's answer), advancePath (the bounce
+// ray's answer: found light, the next vertex or the end).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "trace/embree_scene.h"
+#include "trace/path_tracer.h"
+#include "trace/rng.h"
+#include "trace/surface.h"
+
+namespace photovr {
+
+// A path between bounces.
+struct PathState {
+  SurfaceHit hit;  // the current vertex
+  glm::vec3 wo{0.0f};
+  glm::vec3 beta{1.0f};   // throughput up to the current vertex
+  glm::vec3 share{1.0f};  // diffuse fraction of the first bounce (denoiser lobes)
+  PathSampler sampler;
+  uint32_t depth = 0;
+  bool albedoSet = false;
+  // The bounce ray shadeVertex chose, for advancePath.
+  glm::vec3 wi{0.0f};
+  float bsdfPdf = 0.0f;
+  float survival = 1.0f;  // Russian roulette's survival probability (1: no roulette)
+  bool last = false;      // the path ends at what the bounce ray finds
+};
+
+// A shadow ray and what it adds to the path's lobes if nothing blocks it.
+struct ShadowRay {
+  BatchRay ray;
+  glm::vec3 diffuse{0.0f}, specular{0.0f};
+};
+
+// What shadeVertex asks to trace.
+struct VertexRays {
+  bool shadow = false;  // 'shadow' was filled
+  bool bounce = false;  // 'bounce' was filled; false: the path ends after the shadow ray
+};
+
+PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters);
+VertexRays shadeVertex(const TraceContext& ctx, PathState& path, PathResult& result,
+                       ShadowRay& shadow, BatchRay& bounce);
+void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked);
+// False: the path ended (it left the scene, or 'last' was set).
+bool advancePath(const TraceContext& ctx, PathState& path, PathResult& result, const TraceHit& th);
+// Once the path has ended: the albedo fallback, the NaN/Inf rejection, radiance.
+void finishPath(const PathState& path, PathResult& result);
+
+}  // namespace photovr

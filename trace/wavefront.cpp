@@ -1,0 +1,71 @@
+#include "trace/wavefront.h"
+
+namespace photovr {
+namespace {
+
+// Shading stage: every active path's vertex; queues its shadow and bounce rays.
+void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+  s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
+  s.bounceRays.clear(), s.bounceOwner.clear();
+  for (const uint32_t k : s.active) {
+    ShadowRay shadow;
+    BatchRay bounce;
+    const VertexRays rays = shadeVertex(ctx, s.paths[k], results[k], shadow, bounce);
+    if (rays.shadow) {
+      s.shadows.push_back(shadow);
+      s.shadowRays.push_back(shadow.ray);
+      s.shadowOwner.push_back(k);
+    }
+    if (rays.bounce) {
+      s.bounceRays.push_back({bounce});
+      s.bounceOwner.push_back(k);
+    }
+  }
+}
+
+void traceShadows(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+  const size_t n = s.shadowRays.size();
+  ctx.embree.occludedBatch(s.shadowRays.data(), n, ctx.settings.batchCall);
+  for (size_t j = 0; j < n; ++j)
+    resolveShadow(results[s.shadowOwner[j]], s.shadows[j], s.shadowRays[j].blocked());
+}
+
+// Bounce stage: traces the bounce rays, then moves each path to what its ray found; the
+// paths that go on are the next bounce's active set.
+void traceBounces(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+  const size_t n = s.bounceRays.size();
+  ctx.embree.intersectBatch(s.bounceRays.data(), n, ctx.settings.batchCall);
+  s.next.clear();
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t k = s.bounceOwner[j];
+    if (advancePath(ctx, s.paths[k], results[k], s.bounceRays[j].traceHit())) s.next.push_back(k);
+  }
+  s.active.swap(s.next);
+}
+
+}  // namespace
+
+WavefrontScratch& threadScratch() {
+  thread_local WavefrontScratch scratch;
+  return scratch;
+}
+
+void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
+                   std::span<PathResult> results, WavefrontScratch& s) {
+  const size_t n = starts.size();
+  s.paths.resize(n);
+  s.active.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    s.paths[k] = startPath(starts[k].hit, starts[k].wo, starts[k].counters);
+    results[k] = PathResult{};
+    s.active[k] = uint32_t(k);
+  }
+  while (!s.active.empty()) {
+    shadeAll(ctx, results, s);
+    traceShadows(ctx, results, s);
+    traceBounces(ctx, results, s);
+  }
+  for (size_t k = 0; k < n; ++k) finishPath(s.paths[k], results[k]);
+}
+
+}  // namespace photovr

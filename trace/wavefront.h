@@ -1,0 +1,44 @@
+// The batched (wavefront) tracer: many paths advance one bounce at a time, each stage over
+// the whole batch before the next (Laine, Karras & Aila, "Megakernels Considered Harmful:
+// Wavefront Path Tracing on GPUs", HPG 2013, in its CPU form), so that Embree gets every
+// shadow ray and every bounce ray of a bounce in one call, and each stage's code and data
+// stay in cache while it runs over the batch. Per path, the steps are trace/path_stages.h's:
+// a path's result equals continuePath's for the same counters whenever Embree answers its
+// rays alike (bit for bit here: tests/trace/wavefront_test.cpp).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trace/path_stages.h"
+#include "trace/path_tracer.h"
+
+namespace photovr {
+
+// Where one path starts: a surface hit seen along -wo, and its sample counters.
+struct PathStart {
+  SurfaceHit hit;
+  glm::vec3 wo{0.0f};
+  SampleCounters counters;
+};
+
+// The batch's working memory, kept by each tracing thread from batch to batch.
+struct WavefrontScratch {
+  std::vector<PathState> paths;
+  std::vector<uint32_t> active, next;  // paths still going, by index
+  std::vector<ShadowRay> shadows;      // this bounce's shadow rays ...
+  std::vector<uint32_t> shadowOwner;   // ... and the path each belongs to
+  std::vector<BatchRay> shadowRays;
+  std::vector<BatchRayHit> bounceRays;  // this bounce's bounce rays and hits ...
+  std::vector<uint32_t> bounceOwner;    // ... and the path each belongs to
+};
+
+// This thread's scratch (thread_local: TBB tasks of one thread run one at a time).
+WavefrontScratch& threadScratch();
+
+// continuePath for every start, results[i] for starts[i]; results.size() == starts.size().
+void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
+                   std::span<PathResult> results, WavefrontScratch& scratch);
+
+}  // namespace photovr
