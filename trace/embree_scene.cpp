@@ -201,6 +201,10 @@ static_assert(sizeof(BatchRayHit) == sizeof(RTCRayHit) &&
               offsetof(BatchRayHit, instID) == offsetof(RTCRayHit, hit.instID));
 static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1 && RTC_INVALID_GEOMETRY_ID == ~0u);
 
+void record(RayRecorder& recorder, const BatchRay& r, RecordedRay::Kind kind) {
+  recorder.record({r.origin, r.tnear, r.dir, r.tfar, kind});
+}
+
 RTCRay* embreeRays(BatchRay* rays) {
   return reinterpret_cast<RTCRay*>(rays);
 }
@@ -237,11 +241,8 @@ bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, 
 
 void EmbreeScene::intersectBatch(BatchRayHit* rays, size_t count, BatchCall call,
                                  bool coherent) const {
-  if (recorder_)
-    for (size_t i = 0; i < count; ++i) {
-      const BatchRay& r = rays[i].ray;
-      recorder_->record({r.origin, r.tnear, r.dir, r.tfar, RecordedRay::Kind::Intersect});
-    }
+  for (size_t i = 0; recorder_ && i < count; ++i)
+    record(*recorder_, rays[i].ray, RecordedRay::Kind::Intersect);
   RTCIntersectContext ctx;
   initContext(ctx, coherent);
   if (call == BatchCall::Single) {
@@ -252,11 +253,8 @@ void EmbreeScene::intersectBatch(BatchRayHit* rays, size_t count, BatchCall call
 }
 
 void EmbreeScene::occludedBatch(BatchRay* rays, size_t count, BatchCall call, bool coherent) const {
-  if (recorder_)
-    for (size_t i = 0; i < count; ++i) {
-      const BatchRay& r = rays[i];
-      recorder_->record({r.origin, r.tnear, r.dir, r.tfar, RecordedRay::Kind::Occluded});
-    }
+  for (size_t i = 0; recorder_ && i < count; ++i)
+    record(*recorder_, rays[i], RecordedRay::Kind::Occluded);
   RTCIntersectContext ctx;
   initContext(ctx, coherent);
   if (call == BatchCall::Single) {
