@@ -36,6 +36,7 @@ const char* const kAbHelp =
     "  --width W --height H   per-eye size (default 240x270, a quarter of the DK2's eye)\n"
     "  --spp N --frames F --bounces N --seed S   as for render (defaults 1, 1, 8, 0)\n"
     "  --reference-spp N      reference samples per pixel (default 256)\n"
+    "  --stereo-reuse on|off  as for render (default on), both modes\n"
     "  --backend B --exposure E --env FILE --out DIR (default out/ab-<scene>)\n";
 
 const char* const kReferenceHelp =
@@ -55,6 +56,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   std::set<std::string> valued = {"--scene",         "--env",     "--width",    "--height",
                                   "--spp",           "--frames",  "--bounces",  "--seed",
                                   "--reference-spp", "--backend", "--exposure", "--out"};
+  if (!referenceOnly) valued.insert("--stereo-reuse");
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'");
@@ -70,6 +72,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   r.backend = o.text("--backend", "");
   a.referenceSpp = o.integer("--reference-spp", 256, 1, 1 << 20);
+  r.stereoReuse = parseStereoReuse(o);
   const std::string stem = r.sceneSpec.substr(r.sceneSpec.find_last_of('/') + 1);
   r.outDir = o.text("--out", "out/ab-" + stem.substr(0, stem.find('.')));
   createOutputFolder(r.outDir);
@@ -148,6 +151,7 @@ ModeResult runPathTraced(FramePipeline& pipeline, const RenderRequest& r, int ey
     for (int e = 0; e < eyeCount; ++e) accumulate(m.eyes[e], frame.images[e], f);
     m.wallMs += frame.times.traceMs;
     m.rays += frame.times.rays;
+    m.stages.add(frame.times);
     pipeline.recycle(std::move(frame));
   }
   m.cpuMs = m.wallMs;
@@ -196,7 +200,8 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       "  tracer CPU time, GL excluded (as with a GPU running GL beside the CPU):        %.2fx\n"
       "speed-up at equal error (wall-clock, from relMSE ~ 1/time): %.2fx\n"
       "4-frame hybrid sequence: sequential %.0f ms; pipelined (PBO read-back, G-buffer of\n"
-      "  frame N+1 queued before tracing N) %.0f ms, of which %.0f ms waiting for GL\n",
+      "  frame N+1 queued before tracing N) %.0f ms, of which %.0f ms waiting for GL\n"
+      "tracer per eye (ms, left / right), stereo reuse %s: hybrid %.1f / %.1f, pt %.1f / %.1f\n",
       r.sceneSpec.c_str(), r.width, r.height, hy.eyes.size(), r.spp, r.frames, r.bounces,
       ref.samplesPerPixel, hy.relMse, hy.psnr, hy.wallMs, hy.cpuMs, hy.rays / hy.wallMs * 1e-3,
       pt.relMse, pt.psnr, pt.wallMs, pt.cpuMs, pt.rays / pt.wallMs * 1e-3, hy.stages.gbufferMs,
@@ -204,7 +209,8 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       (unsigned long long)hy.stages.outsideHits, pt.primaryMs, hy.stages.rebuildMs,
       hy.stages.rebuildMs < pt.primaryMs ? "rebuild is cheaper" : "rebuild is NOT cheaper",
       pt.wallMs / hy.wallMs, pt.cpuMs / hy.cpuMs, equalError, pipe.sequentialMs, pipe.pipelinedMs,
-      pipe.waitMs);
+      pipe.waitMs, r.stereoReuse ? "on" : "off", hy.stages.eyeTraceMs[0], hy.stages.eyeTraceMs[1],
+      pt.stages.eyeTraceMs[0], pt.stages.eyeTraceMs[1]);
   return buf;
 }
 

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/render_request.h"
 #include "core/error.h"
 #include "core/options.h"
 #include "harness/bench_driver.h"
@@ -19,7 +20,8 @@ const char* const kBenchHelp =
     "frame and read-back. --quick: 120x135 per eye, 16 frames, 128-spp reference (under 5\n"
     "minutes on 2 cores once references are cached); default 240x270, 32 frames, 512 spp.\n"
     "Writes bench.csv, bench_configs.csv, bench.json, bench.md and (gnuplot) PNG plots into\n"
-    "--out (default out/bench).\n";
+    "--out (default out/bench). --stereo-reuse on|off: every configuration's (default on;\n"
+    "off labels its rows sr-off).\n";
 
 }  // namespace
 
@@ -28,7 +30,7 @@ int runBench(const Args& args) {
     std::cout << kBenchHelp;
     return 0;
   }
-  const Options o(args, {"--out", "--backend", "--scenes"}, {"--quick"});
+  const Options o(args, {"--out", "--backend", "--scenes", "--stereo-reuse"}, {"--quick"});
   if (!o.positional().empty())
     throw UsageError("bench: unexpected argument '" + o.positional()[0] + "'");
   harness::BenchRequest request;
@@ -36,6 +38,7 @@ int runBench(const Args& args) {
   request.outDir = o.text("--out", "out/bench");
   request.scenes = harness::benchSceneList(o.text("--scenes", ""));
   request.backend = o.text("--backend", "");
+  request.stereoReuse = parseStereoReuse(o);
   return harness::runBenchMatrix(request);
 }
 

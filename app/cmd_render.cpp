@@ -43,6 +43,9 @@ const char* const kRenderHelp =
     "  --denoise off|temporal|full  SVGF denoiser in GL (default off; pt draws a G-buffer\n"
     "                         for its guides); writes\n"
     "                         denoised.png and per eye denoised.exr from the last frame\n"
+    "  --stereo-reuse on|off  stereo frames: the right eye reuses the left eye's paths beyond\n"
+    "                         each shared first hit (default on; docs/ARCHITECTURE.md,\n"
+    "                         \"Stereo path reuse\")\n"
     "  --converge E           stop accumulating frames once the estimated relMSE of the\n"
     "                         mean is below E (static view; default 0 = render every frame)\n"
     "  --no-skip LIST         turn off skips of work the scene does not need, to measure\n"
@@ -66,7 +69,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   std::set<std::string> valued = {
       "--scene",   "--env",      "--width",   "--height",   "--backend", "--out",
       "--mode",    "--spp",      "--bounces", "--frames",   "--seed",    "--exposure",
-      "--denoise", "--sampling", "--no-skip", "--converge", "--sampler"};
+      "--denoise", "--sampling", "--no-skip", "--converge", "--sampler", "--stereo-reuse"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty())
@@ -93,6 +96,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   r.sampling = parseSampleMapKind(o.choice(
       "--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"}));
   r.converge = o.number("--converge", 0.0f, 0.0f, 1.0f);
+  r.stereoReuse = parseStereoReuse(o);
   try {
     r.skips.disable(o.text("--no-skip", ""));
   } catch (const std::invalid_argument& e) {
@@ -109,6 +113,10 @@ RenderRequest parseRenderRequest(const Args& args) {
   if (r.sampling != SampleMapKind::Uniform && (r.mode != RenderMode::Hybrid || !r.view.stereo))
     throw UsageError("--sampling: lens-based sample maps need --mode hybrid and --eyes stereo");
   return r;
+}
+
+bool parseStereoReuse(const Options& o) {
+  return o.choice("--stereo-reuse", kStereoReuseDefault ? "on" : "off", {"on", "off"}) == "on";
 }
 
 const char* renderModeName(RenderMode mode) {

@@ -16,6 +16,7 @@
 
 #include "app/commands.h"
 #include "app/headset.h"
+#include "app/render_request.h"
 #include "display/compositor.h"
 #include "display/output.h"
 #include "hmd/headset_description.h"
@@ -54,6 +55,7 @@ const char* const kViewCommandHelp =
     "  --mode hybrid|pt       renderer (default hybrid); --spp N (default 1), --bounces N\n"
     "                         (default 4), --denoise off|temporal|full (default full),\n"
     "                         --sampling uniform|lens-matched (default uniform),\n"
+    "                         --stereo-reuse on|off (default on),\n"
     "                         --exposure E (default 1); all of these change in the overlay\n"
     "  --no-reproject         show frames at the pose they were rendered at\n"
     "  --no-overlay           no Dear ImGui overlay\n"
@@ -93,9 +95,9 @@ ViewConfig parseViewConfig(Args args) {
   ViewConfig c;
   c.hmd = extractHmdOption(args);
   std::set<std::string> valued = {
-      "--scene",    "--env",  "--width",  "--height",     "--window",  "--panel",
-      "--rotate",   "--mode", "--spp",    "--bounces",    "--denoise", "--sampling",
-      "--exposure", "--out",  "--frames", "--screenshot", "--overscan"};
+      "--scene",    "--env",  "--width",  "--height",     "--window",   "--panel",
+      "--rotate",   "--mode", "--spp",    "--bounces",    "--denoise",  "--sampling",
+      "--exposure", "--out",  "--frames", "--screenshot", "--overscan", "--stereo-reuse"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {"--no-reproject", "--no-overlay"});
   if (!o.positional().empty())
@@ -117,6 +119,7 @@ ViewConfig parseViewConfig(Args args) {
   c.settings.sampleMap =
       parseSampleMapKind(o.choice("--sampling", "uniform", {"uniform", "lens-matched"}));
   c.settings.denoise = gl::parseDenoiseMode(o.text("--denoise", "full"));
+  c.settings.stereoReuse = parseStereoReuse(o);
   c.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   c.reproject = !o.has("--no-reproject");
   c.overlay = !o.has("--no-overlay");
@@ -195,6 +198,9 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
   ImGui::Text("frame %u (%d done): %.0f ms", s.last.index, s.rendered, t.totalMs() + s.denoiseMs);
   ImGui::Text("  G-buffer %.1f, read-back %.1f, trace %.1f, denoise %.1f ms", t.gbufferMs,
               t.readbackMs, t.rebuildMs + t.traceMs, s.denoiseMs);
+  ImGui::Text("  tracer left %.1f, right %.1f ms (%.0f %% of its paths reused)", t.eyeTraceMs[0],
+              t.eyeTraceMs[1],
+              t.eyePaths[1] ? 100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]) : 0.0);
   ImGui::Text("  %s, %.2f spp mean, %d bounces", frameModeName(s.last.settings.mode), s.meanSpp,
               s.last.settings.bounces);
   int mode = int(c.settings.mode);
@@ -207,6 +213,7 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
   bool lensMatched = c.settings.sampleMap == SampleMapKind::LensMatched;
   if (ImGui::Checkbox("lens-matched sampling (hybrid)", &lensMatched))
     c.settings.sampleMap = lensMatched ? SampleMapKind::LensMatched : SampleMapKind::Uniform;
+  ImGui::Checkbox("stereo path reuse", &c.settings.stereoReuse);
   ImGui::Checkbox("re-projection", &c.reproject);
   ImGui::SliderFloat("exposure", &c.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::TextUnformatted(head.source->status().c_str());

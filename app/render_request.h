@@ -28,13 +28,17 @@ struct RenderRequest {
   float exposure = 1.0f;
   gl::DenoiseMode denoise = gl::DenoiseMode::Off;
   SampleMapKind sampling = SampleMapKind::Uniform;  // --sampling (hybrid, stereo)
-  WorkSkips skips;        // --no-skip turns skips off (trace/work_skips.h)
-  double converge = 0.0;  // --converge: stop at this estimated relMSE; 0 = off
+  WorkSkips skips;                         // --no-skip turns skips off (trace/work_skips.h)
+  double converge = 0.0;                   // --converge: stop at this estimated relMSE; 0 = off
+  bool stereoReuse = kStereoReuseDefault;  // --stereo-reuse
   Scene scene;
   View view;
 };
 
 RenderRequest parseRenderRequest(const Args& args);  // loads the scene too
+
+// --stereo-reuse on|off (render, view, ab, bench), kStereoReuseDefault when absent.
+bool parseStereoReuse(const Options& options);
 
 // "left"/"right", or "mono" for a mono view's single eye.
 inline const char* eyeFolder(const View& v, int eye) {

@@ -100,6 +100,21 @@ void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eye
   std::printf("  %s/denoised.png\n", r.outDir.c_str());
 }
 
+// Both eyes' tracer times (and, with stereo reuse, the right eye's share of reused paths).
+std::string eyeTracerLine(const RenderRequest& r, const FrameTimes& t, double n) {
+  if (!r.view.stereo) return "";
+  char line[160];
+  std::snprintf(line, sizeof line, "; tracer left %.1f ms, right %.1f ms", t.eyeTraceMs[0] / n,
+                t.eyeTraceMs[1] / n);
+  std::string s = line;
+  if (t.eyeReusedPaths[1] > 0) {
+    std::snprintf(line, sizeof line, " (stereo reuse: %.1f %% of its paths from the left eye)",
+                  100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]));
+    s += line;
+  }
+  return s;
+}
+
 // The stage line of the report, per frame.
 std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frames, double buildMs) {
   const double n = frames;
@@ -116,7 +131,7 @@ std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frame
                   "denoise (%s) %.1f ms (%llu shared-edge hits clamped)",
                   total.gbufferMs / n, total.readbackMs / n, total.rebuildMs / n, total.traceMs / n,
                   denoise, total.denoiseMs / n, (unsigned long long)total.outsideHits);
-  return stages;
+  return stages + eyeTracerLine(r, total, n);
 }
 
 }  // namespace
@@ -130,6 +145,7 @@ FrameSettings frameSettingsOf(const RenderRequest& r) {
   s.sampler = r.sampler;
   s.sampleMap = r.sampling;
   s.denoise = r.denoise;
+  s.stereoReuse = r.stereoReuse;
   return s;
 }
 

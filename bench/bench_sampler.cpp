@@ -96,19 +96,6 @@ struct PtFigure {
   double relMse = 0.0, trimmed = 0.0, msPerSpp = 0.0;  // means over the seeds
 };
 
-// relMSE without the worst 0.1 % of pixels: a path tracer's error is heavy-tailed (one
-// caustic sample of 1000x the pixel's value is a firefly that dominates the mean for
-// hundreds of samples), and a sampler that stratifies better should show it in the body
-// of the image too, not only in where its rare fireflies happen to land.
-double trimmedRelMse(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& ref) {
-  std::vector<float> m = relMseMap(image, ref);
-  const size_t keep = m.size() - m.size() / 1000;
-  std::nth_element(m.begin(), m.begin() + keep, m.end());
-  double sum = 0.0;
-  for (size_t i = 0; i < keep; ++i) sum += m[i];
-  return sum / double(keep);
-}
-
 PtFigure measurePt(const Setup& s, const EmbreeScene& embree, const LightSet& lights,
                    const std::vector<glm::vec3>& reference, SamplerKind kind, int spp,
                    const Args& a) {

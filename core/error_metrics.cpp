@@ -31,6 +31,16 @@ double relMse(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>&
   return image.empty() ? 0.0 : sum / double(image.size());
 }
 
+double trimmedRelMse(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& ref) {
+  std::vector<float> m = relMseMap(image, ref);
+  const size_t keep = m.size() - m.size() / 1000;
+  if (keep == 0) return 0.0;
+  std::nth_element(m.begin(), m.begin() + keep, m.end());
+  double sum = 0.0;
+  for (size_t i = 0; i < keep; ++i) sum += m[i];
+  return sum / double(keep);
+}
+
 double psnrDisplay(const std::vector<glm::vec3>& image, const std::vector<glm::vec3>& reference,
                    float exposure) {
   double sum = 0.0;

@@ -10,7 +10,8 @@ namespace photovr::harness {
 std::string BenchConfig::shortLabel() const {
   return frameModeName(mode) + std::string("/dn-") + gl::denoiseModeName(denoise) + "/" +
          sampleMapKindName(sampling) + "/" + std::to_string(spp) + "spp/" +
-         std::to_string(bounces) + "b/t" + std::to_string(resolvedThreads());
+         std::to_string(bounces) + "b/t" + std::to_string(resolvedThreads()) +
+         (stereoReuse ? "" : "/sr-off");
 }
 
 std::string BenchConfig::label() const {
@@ -27,13 +28,15 @@ BenchSize scoredSize(bool quick) {
   return quick ? BenchSize{120, 135, 16, 128} : BenchSize{240, 270, 32, 512};
 }
 
-std::vector<BenchConfig> benchMatrix(const std::vector<std::string>& scenes, bool quick) {
+std::vector<BenchConfig> benchMatrix(const std::vector<std::string>& scenes, bool quick,
+                                     bool stereoReuse) {
   const BenchSize s = scoredSize(quick);
   std::vector<BenchConfig> out;
   for (const std::string& scene : scenes) {
     BenchConfig base;
     base.scene = scene;
     base.width = s.width, base.height = s.height, base.frames = s.frames;
+    base.stereoReuse = stereoReuse;
     auto add = [&](auto&& edit) {
       BenchConfig c = base;
       edit(c);

@@ -19,6 +19,7 @@ struct BenchConfig {
   int threads = 0;  // tracer (TBB) threads; 0 = all
   int width = 0, height = 0, frames = 0;
   bool scored = true;  // against the cached converged reference (needs one at this size)
+  bool stereoReuse = kStereoReuseDefault;  // --stereo-reuse (the label says "sr-off" when off)
 
   // A name without spaces or commas (plots and CSV key on it), e.g.
   // "atrium/hybrid/dn-full/uniform/1spp/8b/t2/120x135".
@@ -31,7 +32,9 @@ struct BenchConfig {
 // lists both. Every scene gets the baseline pair (hybrid and pt, 1 spp, denoiser off,
 // uniform, all threads, scored), the denoised hybrid, lens-matched hybrid, the tracer on
 // one thread, and the DK2 eye resolution (unscored: timing and peak memory).
-std::vector<BenchConfig> benchMatrix(const std::vector<std::string>& scenes, bool quick);
+// 'stereoReuse': every configuration's (photovr bench --stereo-reuse).
+std::vector<BenchConfig> benchMatrix(const std::vector<std::string>& scenes, bool quick,
+                                     bool stereoReuse = kStereoReuseDefault);
 
 struct BenchSize {
   int width, height, frames, referenceSpp;

@@ -98,7 +98,7 @@ int runBenchMatrix(const BenchRequest& q) {
   createOutputFolder(dir);
   std::filesystem::create_directories(dir);
   for (const std::string& s : q.scenes) makeBuiltinScene(s);  // unknown names fail up front
-  const std::vector<BenchConfig> matrix = benchMatrix(q.scenes, report.quick);
+  const std::vector<BenchConfig> matrix = benchMatrix(q.scenes, report.quick, q.stereoReuse);
   std::printf("photovr bench%s: %zu configurations, each in its own process\n",
               report.quick ? " --quick" : "", matrix.size());
   runMatrix(matrix, report.quick, q.backend, report);

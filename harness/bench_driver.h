@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "hybrid/frame_settings.h"
+
 namespace photovr::harness {
 
 struct BenchRequest {
@@ -21,6 +23,7 @@ struct BenchRequest {
   bool quick = false;
   std::string outDir = "out/bench";
   std::string backend;  // empty: EGL, falling back to OSMesa
+  bool stereoReuse = kStereoReuseDefault;
 };
 
 // "a,b" -> {"a", "b"}; empty -> every built-in scene.

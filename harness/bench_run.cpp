@@ -27,6 +27,7 @@ FrameSettings settingsOf(const BenchConfig& c) {
   s.bounces = c.bounces;
   s.sampleMap = c.sampling;
   s.denoise = c.denoise;
+  s.stereoReuse = c.stereoReuse;
   return s;
 }
 

@@ -27,6 +27,7 @@ TraceSettings traceSettingsOf(const FrameSettings& f, const WorkSkips& skips) {
   s.maxBounces = f.bounces;
   s.seed = f.seed;
   s.sampler = f.sampler;
+  s.stereoReuse = f.stereoReuse;
   s.skips = skips;
   return s;
 }
@@ -118,11 +119,11 @@ void FramePipeline::trace(Job& job) {
   ctx.settings = settings;
   for (int e = 0; e < r.eyeCount; ++e) {
     const auto t0 = Clock::now();
-    f.images[e] = renderPathTraced(ctx, r.eyes[e], uint32_t(e), r.index, std::move(ptBuffers_[e]));
+    f.images[e] = renderPathTraced(ctx, r.eyes[e], uint32_t(e), r.index, std::move(ptBuffers_[e]),
+                                   stereoRoleOf(settings.stereoReuse, e, r.eyeCount, ptStereo_));
     f.times.eyeTraceMs[e] = msSince(t0);
     f.times.traceMs += f.times.eyeTraceMs[e];
-    f.times.rays += f.images[e].rays;
-    f.times.rejectedSamples += f.images[e].rejectedSamples;
+    f.times.addEye(e, f.images[e]);
   }
 }
 

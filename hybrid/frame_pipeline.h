@@ -133,6 +133,7 @@ class FramePipeline {
   std::unique_ptr<gl::EyeArrays> upload_;   // forDisplay frames that skip the denoiser
   std::map<std::pair<SampleMapKind, int>, StereoSampleMaps> maps_;
   std::array<EyeImage, 2> ptBuffers_;         // pt frames are traced into these
+  StereoPaths ptStereo_;                      // pt's left-eye paths for stereo reuse
   std::array<gl::GBufferImage, 2> gbuffers_;  // sequential read-backs, storage reused
   bool historyValid_ = false;
   FrameMode historyMode_ = FrameMode::Hybrid;

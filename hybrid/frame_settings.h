@@ -11,6 +11,10 @@
 namespace photovr {
 
 enum class FrameMode { Hybrid, PathTraced };
+
+// Whether a stereo frame's right eye reuses the left eye's paths unless told otherwise
+// (--stereo-reuse; measured in docs/MEASUREMENTS.md, "Stereo path reuse").
+constexpr bool kStereoReuseDefault = true;
 const char* frameModeName(FrameMode mode);  // "hybrid", "pt"
 
 // What one frame asks for; may change from frame to frame.
@@ -21,6 +25,7 @@ struct FrameSettings {
   SamplerKind sampler = SamplerKind::Sobol;
   SampleMapKind sampleMap = SampleMapKind::Uniform;  // hybrid only
   gl::DenoiseMode denoise = gl::DenoiseMode::Off;
+  bool stereoReuse = kStereoReuseDefault;  // right eye reuses the left's paths (stereo_reuse.h)
 };
 
 }  // namespace photovr

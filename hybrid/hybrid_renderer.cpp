@@ -10,9 +10,20 @@ namespace photovr {
 void FrameTimes::add(const FrameTimes& t) {
   gbufferMs += t.gbufferMs, readbackMs += t.readbackMs;
   rebuildMs += t.rebuildMs, traceMs += t.traceMs, refitMs += t.refitMs;
-  for (int e = 0; e < 2; ++e) eyeTraceMs[e] += t.eyeTraceMs[e];
+  for (int e = 0; e < 2; ++e) {
+    eyeTraceMs[e] += t.eyeTraceMs[e];
+    eyePaths[e] += t.eyePaths[e];
+    eyeReusedPaths[e] += t.eyeReusedPaths[e];
+  }
   denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
   rays += t.rays, outsideHits += t.outsideHits, rejectedSamples += t.rejectedSamples;
+}
+
+void FrameTimes::addEye(int eye, const EyeImage& image) {
+  rays += image.rays;
+  rejectedSamples += image.rejectedSamples;
+  eyePaths[eye] += image.paths;
+  eyeReusedPaths[eye] += image.reusedPaths;
 }
 
 HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSettings& settings)
@@ -57,13 +68,13 @@ std::array<EyeImage, 2> HybridRenderer::trace(const std::array<gl::GBufferImage,
   for (int e = 0; e < eyeCount; ++e) {
     HybridEyeStats s;
     out[e] =
-        traceFromGBuffer(ctx, g[e], eyes[e], uint32_t(e), frame, samples[e], &s, &eyeBuffers_[e]);
+        traceFromGBuffer(ctx, g[e], eyes[e], uint32_t(e), frame, samples[e], &s, &eyeBuffers_[e],
+                         stereoRoleOf(settings.stereoReuse, e, eyeCount, stereo_));
     t.rebuildMs += s.rebuildMs;
     t.traceMs += s.traceMs;
     t.eyeTraceMs[e] += s.rebuildMs + s.traceMs;
     t.outsideHits += s.outsideHits;
-    t.rays += out[e].rays;
-    t.rejectedSamples += out[e].rejectedSamples;
+    t.addEye(e, out[e]);
   }
   return out;
 }

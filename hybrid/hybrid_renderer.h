@@ -26,14 +26,17 @@ struct FrameTimes {
   double readbackMs = 0.0;  // GL -> CPU copy of the G-buffer layers
   double rebuildMs = 0.0;   // visibility records -> exact hits
   double traceMs = 0.0;     // path continuation (pt: whole paths), both eyes
-  std::array<double, 2> eyeTraceMs{};  // per eye: its rebuild and trace
-  double refitMs = 0.0;                // BVH top-level re-commit (only with 'refit' off)
-  double denoiseMs = 0.0;              // FramePipeline's finish: denoiser or upload, wall
-  double denoisePassMs = 0.0;          // the denoiser's passes, glFinish-bracketed (timed)
+  std::array<double, 2> eyeTraceMs{};        // per eye: its rebuild and trace
+  std::array<uint64_t, 2> eyePaths{};        // per eye: paths from primary hits ...
+  std::array<uint64_t, 2> eyeReusedPaths{};  // ... of which reused the left eye's
+  double refitMs = 0.0;                      // BVH top-level re-commit (only with 'refit' off)
+  double denoiseMs = 0.0;                    // FramePipeline's finish: denoiser or upload, wall
+  double denoisePassMs = 0.0;                // the denoiser's passes, glFinish-bracketed (timed)
   uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
   double cpuMs() const { return refitMs + rebuildMs + traceMs; }  // the tracer's share
   double totalMs() const { return gbufferMs + readbackMs + cpuMs(); }
-  void add(const FrameTimes& t);  // sums every field
+  void add(const FrameTimes& t);                // sums every field
+  void addEye(int eye, const EyeImage& image);  // its rays, rejected samples and path counts
 };
 
 class HybridRenderer {
@@ -88,6 +91,7 @@ class HybridRenderer {
   gl::GBufferPass pass_;
   std::array<gl::GBufferImage, 2> gbuffers_;    // the last read-back, its storage reused
   std::array<HybridEyeBuffers, 2> eyeBuffers_;  // the tracer's, likewise (see recycle())
+  StereoPaths stereo_;                          // the left eye's paths for stereo reuse
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;

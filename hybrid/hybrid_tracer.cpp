@@ -22,7 +22,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
                           uint32_t eye, uint32_t frame, const SampleMap& samples,
-                          HybridEyeStats* stats, HybridEyeBuffers* reuse) {
+                          HybridEyeStats* stats, HybridEyeBuffers* reuse, StereoRole stereo) {
   HybridEyeBuffers local;
   HybridEyeBuffers& buffers = reuse ? *reuse : local;
   EyeImage& img = buffers.image;
@@ -30,7 +30,9 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   const size_t n = size_t(g.width) * g.height;
   std::vector<RebuiltHit>& hits = buffers.hits;
   hits.resize(n);  // every element is written below: no second pass over ~95 MB
-  std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0};
+  std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0}, paths{0},
+      reused{0};
+  if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const auto t0 = Clock::now();
   tbb::parallel_for(
@@ -52,7 +54,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
         enableFlushToZero();
-        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0, tileSkyHits = 0;
+        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0, tileSkyHits = 0, tilePaths = 0,
+                 tileReused = 0;
         thread_local PathBatcher batcher;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
@@ -73,10 +76,17 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           batcher.beginPixel(i);
           SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
                                   ctx.settings.sampler};
+          const SurfaceHit& hit = hits[i].surface;
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
-            batcher.addHit(hits[i].surface, dir, counters);
+            FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
+            const FirstBounce* partner =
+                stereo.reuse ? findPartner(*stereo.reuse, hit, cam.pose.position, cam.jitter, s)
+                             : nullptr;
+            tileReused += partner != nullptr;
+            batcher.addHit(hit, dir, counters, record, partner);
           }
+          tilePaths += spp;
           ++tileTraced;
         }
         batcher.flush(ctx, img, tileRays, tileRejected);
@@ -84,8 +94,12 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
         rejected += tileRejected;
         traced += tileTraced;
         skyHits += tileSkyHits;
+        paths += tilePaths;
+        reused += tileReused;
       });
   img.rays = rays;
+  img.paths = paths;
+  img.reusedPaths = reused;
   img.rejectedSamples = rejected;
   if (stats) {
     stats->rebuildMs = std::chrono::duration<double, std::milli>(t1 - t0).count();

@@ -31,6 +31,7 @@ struct HybridEyeStats {
 // reuse->image (give the returned image back there when done with it) and the rebuilt hits
 // in reuse->hits: at 960x1080 the two are ~190 MB per eye, whose first touch as fresh
 // memory cost ~640 ms per eye here (docs/ARCHITECTURE.md, "Memory reuse").
+// 'stereo': this eye's part in stereo path reuse (trace/stereo_reuse.h).
 struct HybridEyeBuffers {
   EyeImage image;
   std::vector<RebuiltHit> hits;
@@ -38,6 +39,6 @@ struct HybridEyeBuffers {
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuffer,
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,
                           const SampleMap& samples, HybridEyeStats* stats,
-                          HybridEyeBuffers* reuse = nullptr);
+                          HybridEyeBuffers* reuse = nullptr, StereoRole stereo = {});
 
 }  // namespace photovr

@@ -7,9 +7,10 @@ void PathBatcher::beginPixel(size_t pixel) {
 }
 
 void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
-                         const SampleCounters& counters) {
+                         const SampleCounters& counters, FirstBounce* record,
+                         const FirstBounce* reuse) {
   samples_.push_back({int32_t(starts_.size()), glm::vec3(0.0f)});
-  starts_.push_back({hit, -dir, counters});
+  starts_.push_back({hit, -dir, counters, record, reuse});
   ++pixels_.back().samples;
 }
 

@@ -19,8 +19,10 @@ class PathBatcher {
 
   // The samples added next belong to pixel 'pixel' of the image, until the next call.
   void beginPixel(size_t pixel);
-  // A sample whose primary ray along 'dir' hit 'hit': its path is continued.
-  void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters);
+  // A sample whose primary ray along 'dir' hit 'hit': its path is continued (stereo reuse:
+  // recording its first bounce in 'record', or reusing the left sample 'reuse').
+  void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters,
+              FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
   // A sample whose primary ray left the scene and saw 'environment'.
   void addMiss(const glm::vec3& environment);
   bool full() const { return starts_.size() >= kBatchPaths; }

@@ -15,6 +15,7 @@
 #include "trace/embree_scene.h"
 #include "trace/path_tracer.h"
 #include "trace/rng.h"
+#include "trace/stereo_reuse.h"
 #include "trace/surface.h"
 
 namespace photovr {
@@ -33,6 +34,12 @@ struct PathState {
   float bsdfPdf = 0.0f;
   float survival = 1.0f;  // Russian roulette's survival probability (1: no roulette)
   bool last = false;      // the path ends at what the bounce ray finds
+  // Stereo reuse (trace/stereo_reuse.h): the left eye's path records its first bounce in
+  // 'record'; a right eye's path that reuses 'reuse' stops after its first vertex.
+  FirstBounce* record = nullptr;
+  const FirstBounce* reuse = nullptr;
+  glm::vec3 weight0{0.0f};  // record: the first bounce's throughput f cos / pdf ...
+  glm::vec3 before0{0.0f};  // ... and the radiance gathered up to and with Le(x2)
 };
 
 // A shadow ray and what it adds to the path's lobes if nothing blocks it.
@@ -47,7 +54,9 @@ struct VertexRays {
   bool bounce = false;  // 'bounce' was filled; false: the path ends after the shadow ray
 };
 
-PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters);
+// 'record', 'reuse': see PathState (at most one of them).
+PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
+                    FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, PathResult& result,
                        ShadowRay& shadow, BatchRay& bounce);
 void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked);

@@ -90,13 +90,69 @@ void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& sha
   r.specular += contribution * (1.0f - share);
 }
 
+// The right eye's bounce term from the left path's first bounce (trace/stereo_reuse.h
+// derives it): no ray; the left's direction and the radiance it brought, re-weighted by
+// this vertex's BSDF, and the emission it found MIS-weighted against this vertex's NEE.
+void reuseBounce(const TraceContext& ctx, const PathState& p, const Frame& frame,
+                 const BsdfVertex& bsdf, PathResult& result) {
+  const FirstBounce& b = *p.reuse;
+  if (!b.sampled) return;  // the left path's bounce term was 0 (no valid sample, or rejected)
+  const glm::vec3& wi = b.dir;
+  if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return;
+  const glm::vec3 wiL = frame.toLocal(wi);
+  const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
+  glm::vec3 incoming = b.beyond;
+  if (b.emitted != glm::vec3(0.0f)) {
+    const float lightPdf =
+        b.hit ? ctx.lights.pdfArea(b.instance2, b.triangle2, p.hit.position, b.x2, b.n2)
+              : ctx.lights.pdfEnvironment(wi);
+    incoming += b.emitted * powerHeuristic(1, e.pdf, 1, lightPdf);
+  }
+  const glm::vec3 scale = incoming * (std::abs(wiL.z) / b.pdf);
+  result.diffuse += e.f.diffuse * scale;
+  result.specular += e.f.specular * scale;
+}
+
+glm::vec3 divideOrZero(const glm::vec3& a, const glm::vec3& b) {
+  glm::vec3 q(0.0f);
+  for (int k = 0; k < 3; ++k) q[k] = b[k] != 0.0f ? a[k] / b[k] : 0.0f;
+  return q;
+}
+
+// The left path's second vertex as the right eye's reuse needs it.
+void recordSecondVertex(const TraceContext& ctx, PathState& p, const PathResult& result,
+                        const TraceHit& th, const SurfaceHit& next) {
+  FirstBounce& b = *p.record;
+  b.hit = th.hit;
+  if (th.hit) {
+    b.x2 = next.position;
+    b.n2 = next.geometricNormal;
+    b.instance2 = th.instance;
+    b.triangle2 = th.triangle;
+    b.emitted = next.emission;
+  } else {
+    b.emitted = ctx.lights.environmentRadiance(p.wi);
+  }
+  p.before0 = result.diffuse + result.specular;
+}
+
 }  // namespace
 
-PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters) {
+PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
+                    FirstBounce* record, const FirstBounce* reuse) {
   PathState p;
   p.hit = hit;
   p.wo = wo;
-  p.sampler = PathSampler::make(counters);
+  p.sampler = reuse ? reuse->sampler : PathSampler::make(counters);
+  p.record = record;
+  p.reuse = reuse;
+  if (record) {
+    *record = FirstBounce{};
+    record->position = hit.position;
+    record->normal = hit.shadingNormal;
+    record->instance = hit.instance;
+    record->sampler = p.sampler;
+  }
   return p;
 }
 
@@ -112,11 +168,21 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
   VertexRays rays;
   rays.shadow = directLight(ctx, p, frame, bsdf, sampler, shadow);
   result.rays += rays.shadow;
+  if (p.reuse) {
+    reuseBounce(ctx, p, frame, bsdf, result);
+    return rays;
+  }
   const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
   if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return rays;  // shading normal leaked below
   if (p.depth == 0) p.share = diffuseShare(bs);
+  if (p.depth == 0 && p.record) {
+    p.record->sampled = true;
+    p.record->dir = wi;
+    p.record->pdf = bs.pdf;
+    p.weight0 = bs.weight;
+  }
   p.beta *= bs.weight;
   // Whether the path ends at what this ray finds: the bounce cap, or Russian roulette
   // (thesis Algorithm 2: survive with the largest throughput channel, then rescale).
@@ -150,6 +216,7 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
   }
   addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
            p.share);
+  if (p.depth == 0 && p.record) recordSecondVertex(ctx, p, result, th, next);
   if (!th.hit || p.last) return false;
   p.beta /= p.survival;
   p.hit = next;
@@ -163,6 +230,11 @@ void finishPath(const PathState& p, PathResult& result) {
   if (!finite(result.diffuse) || !finite(result.specular)) {
     result.diffuse = result.specular = glm::vec3(0.0f);
     result.rejected = 1;
+    if (p.record) p.record->sampled = false;
+  }
+  if (p.record && p.record->sampled) {
+    const glm::vec3 after = result.diffuse + result.specular - p.before0;
+    p.record->beyond = divideOrZero(after, p.weight0);
   }
   result.radiance = result.diffuse + result.specular;
 }

@@ -13,6 +13,7 @@
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
 #include "trace/rng.h"
+#include "trace/stereo_reuse.h"
 #include "trace/surface.h"
 
 namespace photovr {
@@ -24,8 +25,9 @@ struct TraceSettings {
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   BatchCall batchCall = BatchCall::Stream;   // how the batched tracer hands rays to Embree
-  WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
-                    // their EmbreeScene and LightSet with the same skips
+  bool stereoReuse = false;  // a stereo frame's right eye reuses the left's paths (--stereo-reuse)
+  WorkSkips skips;           // work the scene does not need (work_skips.h); the renderers build
+                             // their EmbreeScene and LightSet with the same skips
 };
 
 // Everything a path needs, built once per scene.
@@ -62,6 +64,8 @@ struct EyeImage {
   // each lobe's mean radiance divided by its albedo, and those albedos.
   std::vector<glm::vec3> diffuse, specular, diffuseAlbedo, specularAlbedo;
   uint64_t rays = 0;             // rays traced (primary, bounce, shadow)
+  uint64_t paths = 0;            // paths continued from a primary hit ...
+  uint64_t reusedPaths = 0;      // ... of which reused the left eye's (trace/stereo_reuse.h)
   uint64_t rejectedSamples = 0;  // NaN/Inf samples caught and dropped
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
@@ -71,8 +75,9 @@ struct EyeImage {
 // sample per frame the two agree when the camera was made with samplePosition(kind, frame),
 // as the rasterizer's is. 'reuse': an earlier frame's image, done with, to trace into
 // instead of fresh memory (whose first touch costs ~300 ms per 960x1080 image here,
-// docs/ARCHITECTURE.md, "Memory reuse"), as the hybrid's.
+// docs/ARCHITECTURE.md, "Memory reuse"), as the hybrid's. 'stereo': this eye's part in
+// stereo path reuse (trace/stereo_reuse.h).
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& camera, uint32_t eye,
-                          uint32_t frame, EyeImage reuse = {});
+                          uint32_t frame, EyeImage reuse = {}, StereoRole stereo = {});
 
 }  // namespace photovr

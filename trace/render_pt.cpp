@@ -19,7 +19,7 @@ constexpr int kTile = 16;  // 16 x 16 pixels: enough work per task, many tasks f
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 struct Counts {
-  uint64_t rays = 0, rejected = 0;
+  uint64_t rays = 0, rejected = 0, paths = 0, reused = 0;
 };
 
 // Sample s of frame f sits at the sampler's position for index f * spp + s
@@ -31,7 +31,8 @@ struct Counts {
 // A tile's primary rays go to Embree as one coherent batch, then its paths as batches of
 // the wavefront tracer.
 void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint32_t frame,
-               const tbb::blocked_range2d<int>& r, EyeImage& img, Counts& counts) {
+               const StereoRole& stereo, const tbb::blocked_range2d<int>& r, EyeImage& img,
+               Counts& counts) {
   const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   thread_local std::vector<BatchRayHit> primary;
@@ -69,9 +70,16 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           img.normal[i] = hit.shadingNormal;
           first = false;
         }
+        FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
+        const FirstBounce* partner =
+            stereo.reuse ? findPartner(*stereo.reuse, hit, cam.pose.position,
+                                       samplePosition(ctx.settings.sampler, frame * spp + s), s)
+                         : nullptr;
+        counts.reused += partner != nullptr;
+        ++counts.paths;
         batcher.addHit(
-            hit, dir,
-            {uint32_t(i), eye, frame, s, 0, ctx.settings.seed, spp, ctx.settings.sampler});
+            hit, dir, {uint32_t(i), eye, frame, s, 0, ctx.settings.seed, spp, ctx.settings.sampler},
+            record, partner);
       }
     }
   batcher.flush(ctx, img, counts.rays, counts.rejected);
@@ -80,19 +88,24 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
 }  // namespace
 
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye,
-                          uint32_t frame, EyeImage reuse) {
+                          uint32_t frame, EyeImage reuse, StereoRole stereo) {
   EyeImage img = std::move(reuse);
   allocateEyeImage(img, cam.width, cam.height);
-  std::atomic<uint64_t> rays{0}, rejected{0};
+  if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
+  std::atomic<uint64_t> rays{0}, rejected{0}, paths{0}, reused{0};
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, kTile, 0, cam.width, kTile),
                     [&](const tbb::blocked_range2d<int>& r) {
                       enableFlushToZero();
                       Counts counts;
-                      traceTile(ctx, cam, eye, frame, r, img, counts);
+                      traceTile(ctx, cam, eye, frame, stereo, r, img, counts);
                       rays += counts.rays;
                       rejected += counts.rejected;
+                      paths += counts.paths;
+                      reused += counts.reused;
                     });
   img.rays = rays;
+  img.paths = paths;
+  img.reusedPaths = reused;
   img.rejectedSamples = rejected;
   return img;
 }

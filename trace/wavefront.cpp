@@ -56,7 +56,8 @@ void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
   s.paths.resize(n);
   s.active.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    s.paths[k] = startPath(starts[k].hit, starts[k].wo, starts[k].counters);
+    const PathStart& st = starts[k];
+    s.paths[k] = startPath(st.hit, st.wo, st.counters, st.record, st.reuse);
     results[k] = PathResult{};
     s.active[k] = uint32_t(k);
   }

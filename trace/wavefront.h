@@ -21,6 +21,8 @@ struct PathStart {
   SurfaceHit hit;
   glm::vec3 wo{0.0f};
   SampleCounters counters;
+  FirstBounce* record = nullptr;  // stereo reuse: see PathState
+  const FirstBounce* reuse = nullptr;
 };
 
 // The batch's working memory, kept by each tracing thread from batch to batch.

@@ -78,8 +78,10 @@ TEST(FramePipeline, PathTracedFramesNeedNoGlAndEqualRenderPathTraced) {
   const EmbreeScene embree(scene);
   const LightSet lights(scene);
   const TraceContext tc{scene, embree, lights, traceSettingsOf(q.settings)};
+  StereoPaths stereo;  // the pipeline's stereo reuse, as it runs it
   for (int e = 0; e < 2; ++e) {
-    const EyeImage want = renderPathTraced(tc, q.eyes[e], uint32_t(e), q.index);
+    const EyeImage want = renderPathTraced(tc, q.eyes[e], uint32_t(e), q.index, {},
+                                           stereoRoleOf(q.settings.stereoReuse, e, 2, stereo));
     EXPECT_EQ(got.images[e].color, want.color) << "eye " << e;
     EXPECT_EQ(got.images[e].samples, want.samples) << "eye " << e;
     EXPECT_GT(got.times.eyeTraceMs[e], 0.0);

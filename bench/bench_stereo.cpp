@@ -1,0 +1,338 @@
+// Stereo path reuse (issue 21, trace/stereo_reuse.h): what the right eye costs and what the
+// frame's time buys, reuse on against off, same run, every built-in scene.
+//
+// 1. Tracer time per eye at 1 spp, 8 bounces (hybrid: rebuild + trace; pt: whole paths),
+//    median of --repeats frames, on and off alternating; the share of right-eye paths that
+//    reused the left's.
+// 2. Equal-time quality (hybrid): --frames frames with reuse off take a tracer time T; with
+//    reuse on, frames are traced until their tracer time reaches T; --seeds times. Per-eye relMSE
+//    and trimmed relMSE (core/error_metrics.h) of each mean against a converged pt reference
+//    (harness/reference_cache.h, --reference-spp).
+// 3. Stereo consistency: the correlation of the two eyes' relative noise (relativeNoise) at
+//    corresponding pixels (the right pixel's hit seen by the left pixel its projection lands
+//    in, trace/stereo_reuse.h's partner test), one-frame images, on and off.
+//
+// Writes bench_stereo.csv to --out (out/bench).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "bench/bench_cli.h"
+#include "core/builtin_scenes.h"
+#include "core/error_metrics.h"
+#include "core/huge_pages.h"
+#include "core/stopwatch.h"
+#include "core/view.h"
+#include "gl/context.h"
+#include "harness/reference_cache.h"
+#include "hybrid/hybrid_renderer.h"
+#include "trace/pixel_estimate.h"
+#include "trace/sampling.h"
+
+PHOTOVR_PREINIT(photovr::useHugePagesForMalloc);
+namespace photovr {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+struct Args {
+  std::string out;
+  int width = 0, height = 0, repeats = 0, frames = 0, referenceSpp = 0, seeds = 0;
+};
+
+struct EyeTimes {
+  std::array<double, 2> ms{};  // median tracer time per eye
+  double reusedShare = 0.0;    // right-eye paths that reused the left's
+};
+
+struct Row {
+  std::string scene;
+  EyeTimes hybridOff, hybridOn, ptOn;
+  std::array<double, 2> ptOffMs{};
+  int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
+  double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
+  std::array<double, 2> relMseOff{}, relMseOn{}, trimmedOff{}, trimmedOn{};
+  double correlationOff = 0.0, correlationOn = 0.0;
+  size_t pairs = 0;
+};
+
+View viewOf(const Scene& scene) {
+  View v;
+  v.head = poseOf(scene.cameras.at(0));
+  return v;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 0) {
+  TraceSettings s = r.traceContext().settings;
+  s.stereoReuse = reuse;
+  s.seed = seed;
+  return s;
+}
+
+// Hybrid: per-eye tracer times on and off, alternating frame by frame.
+void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
+  std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][eye]
+  std::array<uint64_t, 2> paths{}, reused{};
+  for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of both
+    for (int on = 0; on < 2; ++on) {
+      r.setSettings(settingsWith(r, on == 1));
+      FrameTimes t;
+      const uint32_t f = uint32_t(std::max(k, 0));
+      r.recycle(r.render(eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol), 2, f, &t));
+      if (k < 0) continue;
+      for (int e = 0; e < 2; ++e) ms[on][e].push_back(t.eyeTraceMs[e]);
+      paths[on] += t.eyePaths[1], reused[on] += t.eyeReusedPaths[1];
+    }
+  for (int e = 0; e < 2; ++e) {
+    row.hybridOff.ms[e] = median(ms[0][e]);
+    row.hybridOn.ms[e] = median(ms[1][e]);
+  }
+  row.hybridOn.reusedShare = double(reused[1]) / double(std::max<uint64_t>(paths[1], 1));
+}
+
+// pt: both eyes traced as FramePipeline does, on and off alternating.
+void timePt(const TraceContext& base, const View& view, const Args& a, Row& row) {
+  StereoPaths paths;
+  std::array<std::array<std::vector<double>, 2>, 2> ms;
+  uint64_t total = 0, reused = 0;
+  TraceContext ctx = base;
+  for (int k = -1; k < a.repeats; ++k)
+    for (int on = 0; on < 2; ++on) {
+      const uint32_t f = uint32_t(std::max(k, 0));
+      const auto eyes = eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol);
+      for (int e = 0; e < 2; ++e) {
+        const auto t0 = Clock::now();
+        const EyeImage img =
+            renderPathTraced(ctx, eyes[e], uint32_t(e), f, {}, stereoRoleOf(on == 1, e, 2, paths));
+        if (k < 0) continue;
+        ms[on][e].push_back(msSince(t0));
+        if (on && e == 1) total += img.paths, reused += img.reusedPaths;
+      }
+    }
+  for (int e = 0; e < 2; ++e) {
+    row.ptOffMs[e] = median(ms[0][e]);
+    row.ptOn.ms[e] = median(ms[1][e]);
+  }
+  row.ptOn.reusedShare = double(reused) / double(std::max<uint64_t>(total, 1));
+}
+
+// Frames of the hybrid with reuse 'on' until 'frames' of them (frames > 0) or until their
+// tracer time reaches 'budgetMs'; the per-eye means, their count and tracer time.
+struct Accumulated {
+  std::array<std::vector<glm::vec3>, 2> mean;
+  int frames = 0;
+  double tracerMs = 0.0;
+};
+Accumulated accumulate(HybridRenderer& r, const View& view, const Args& a, bool on, int frames,
+                       double budgetMs, uint32_t seed) {
+  r.setSettings(settingsWith(r, on, seed));
+  Accumulated acc;
+  for (auto& m : acc.mean) m.assign(size_t(a.width) * a.height, glm::vec3(0.0f));
+  while (frames > 0 ? acc.frames < frames : acc.tracerMs < budgetMs) {
+    FrameTimes t;
+    const uint32_t f = uint32_t(acc.frames);
+    auto img = r.render(eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol), 2, f, &t);
+    acc.tracerMs += t.cpuMs();
+    for (int e = 0; e < 2; ++e)
+      for (size_t i = 0; i < acc.mean[e].size(); ++i) acc.mean[e][i] += img[e].color[i];
+    r.recycle(std::move(img));
+    ++acc.frames;
+  }
+  for (auto& m : acc.mean)
+    for (glm::vec3& c : m) c /= float(acc.frames);
+  return acc;
+}
+
+// Right pixel -> left pixel pairs that see one surface point, by primary rays through the
+// pixel centres and the partner test of trace/stereo_reuse.h (roughness aside).
+std::vector<std::pair<size_t, size_t>> correspondingPixels(const TraceContext& ctx,
+                                                           const std::array<EyeCamera, 2>& eyes) {
+  std::array<std::vector<SurfaceHit>, 2> hits;
+  std::array<std::vector<bool>, 2> hit;
+  for (int e = 0; e < 2; ++e) {
+    const EyeCamera& c = eyes[e];
+    hits[e].resize(size_t(c.width) * c.height);
+    hit[e].assign(hits[e].size(), false);
+    for (int y = 0; y < c.height; ++y)
+      for (int x = 0; x < c.width; ++x) {
+        const glm::vec3 dir = c.rayDirection(x + 0.5f, y + 0.5f);
+        const TraceHit th = ctx.embree.intersect(c.pose.position, dir, 0.0f, kInfinity);
+        if (!th.hit) continue;
+        const size_t i = size_t(y) * c.width + x;
+        hits[e][i] = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
+        hit[e][i] = true;
+      }
+  }
+  StereoPaths left;
+  left.reset(eyes[0], 1);
+  for (size_t i = 0; i < hits[0].size(); ++i)
+    if (hit[0][i]) {
+      FirstBounce& b = *left.slot(i, 0);
+      b.position = hits[0][i].position, b.normal = hits[0][i].shadingNormal;
+      b.instance = hits[0][i].instance;
+    }
+  std::vector<std::pair<size_t, size_t>> pairs;
+  for (size_t i = 0; i < hits[1].size(); ++i) {
+    if (!hit[1][i]) continue;
+    SurfaceHit h = hits[1][i];
+    h.bsdf.roughness = 1.0f;  // every surface point, whatever its material
+    if (const FirstBounce* b = findPartner(left, h, eyes[1].pose.position, glm::vec2(0.0f), 0))
+      pairs.push_back({i, size_t(b - left.bounces.data())});
+  }
+  return pairs;
+}
+
+// Relative noise of a pixel, clipped: (frame - reference) / (reference + 0.01) on luminance,
+// within +-3, so that a firefly (relative noise of 100 or more) does not decide the
+// correlation alone.
+double relativeNoise(const glm::vec3& value, const glm::vec3& reference) {
+  const double r = luminance(reference);
+  return std::clamp((luminance(value) - r) / (r + 0.01), -3.0, 3.0);
+}
+
+// Pearson correlation of the eyes' one-frame relative noise at corresponding pixels, over
+// 'frames'.
+double noiseCorrelation(HybridRenderer& r, const View& view, const Args& a, bool on,
+                        const std::vector<std::pair<size_t, size_t>>& pairs,
+                        const harness::Reference& ref) {
+  r.setSettings(settingsWith(r, on));
+  double sl = 0, sr = 0, sll = 0, srr = 0, slr = 0, n = 0;
+  for (int k = 0; k < a.frames; ++k) {
+    const uint32_t f = uint32_t(1000 + k);
+    auto img = r.render(eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol), 2, f, nullptr);
+    for (const auto& [ri, li] : pairs) {
+      const double nl = relativeNoise(img[0].color[li], ref.eyes[0][li]);
+      const double nr = relativeNoise(img[1].color[ri], ref.eyes[1][ri]);
+      sl += nl, sr += nr, sll += nl * nl, srr += nr * nr, slr += nl * nr, n += 1;
+    }
+    r.recycle(std::move(img));
+  }
+  const double cov = slr / n - sl / n * sr / n;
+  const double vl = sll / n - sl / n * sl / n, vr = srr / n - sr / n * sr / n;
+  return cov / std::sqrt(vl * vr);
+}
+
+void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, const Args& a,
+                    Row& row) {
+  const harness::Reference ref =
+      harness::loadOrRenderReference({&scene, view, a.width, a.height, 8}, a.referenceSpp);
+  // Means over seeds: one caustic firefly can hold most of a 32-frame relMSE (spheres), so
+  // one seed's ratio says little.
+  for (int k = 0; k < a.seeds; ++k) {
+    const uint32_t seed = uint32_t(k + 1);
+    const Accumulated off = accumulate(r, view, a, false, a.frames, 0.0, seed);
+    const Accumulated on = accumulate(r, view, a, true, 0, off.tracerMs, seed);
+    row.framesOn += on.frames;
+    row.frameMsOff += off.tracerMs / off.frames / a.seeds;
+    row.frameMsOn += on.tracerMs / on.frames / a.seeds;
+    for (int e = 0; e < 2; ++e) {
+      row.relMseOff[e] += relMse(off.mean[e], ref.eyes[e]) / a.seeds;
+      row.relMseOn[e] += relMse(on.mean[e], ref.eyes[e]) / a.seeds;
+      row.trimmedOff[e] += trimmedRelMse(off.mean[e], ref.eyes[e]) / a.seeds;
+      row.trimmedOn[e] += trimmedRelMse(on.mean[e], ref.eyes[e]) / a.seeds;
+    }
+  }
+  row.framesOff = a.frames;
+  row.framesOn = (row.framesOn + a.seeds / 2) / a.seeds;
+  const auto pairs = correspondingPixels(
+      r.traceContext(), eyeCameras(view, a.width, a.height, 0, SamplerKind::Sobol));
+  row.pairs = pairs.size();
+  row.correlationOff = noiseCorrelation(r, view, a, false, pairs, ref);
+  row.correlationOn = noiseCorrelation(r, view, a, true, pairs, ref);
+}
+
+void print(const Row& r, std::ofstream& csv) {
+  const auto ratio = [](const std::array<double, 2>& ms) { return ms[1] / ms[0]; };
+  std::printf(
+      "%-8s hybrid tracer ms L/R: off %6.1f/%6.1f, on %6.1f/%6.1f (right/left %.2f, "
+      "reused %.3f) | pt off %6.1f/%6.1f, on %6.1f/%6.1f (right/left %.2f, reused %.3f)\n",
+      r.scene.c_str(), r.hybridOff.ms[0], r.hybridOff.ms[1], r.hybridOn.ms[0], r.hybridOn.ms[1],
+      ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.ptOffMs[0], r.ptOffMs[1], r.ptOn.ms[0],
+      r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
+  std::printf(
+      "         equal time: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
+      "%.4f/%.4f, on %.4f/%.4f (off/on %.2f/%.2f); trimmed off/on %.2f/%.2f\n",
+      r.framesOff, r.frameMsOff, r.framesOn, r.frameMsOn, r.relMseOff[0], r.relMseOff[1],
+      r.relMseOn[0], r.relMseOn[1], r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
+      r.trimmedOff[0] / r.trimmedOn[0], r.trimmedOff[1] / r.trimmedOn[1]);
+  std::printf(
+      "         noise correlation of the eyes at %zu corresponding pixels: off %.3f, "
+      "on %.3f\n",
+      r.pairs, r.correlationOff, r.correlationOn);
+  csv << r.scene << ',' << r.hybridOff.ms[0] << ',' << r.hybridOff.ms[1] << ',' << r.hybridOn.ms[0]
+      << ',' << r.hybridOn.ms[1] << ',' << ratio(r.hybridOn.ms) << ',' << r.hybridOn.reusedShare
+      << ',' << r.ptOffMs[0] << ',' << r.ptOffMs[1] << ',' << r.ptOn.ms[0] << ',' << r.ptOn.ms[1]
+      << ',' << ratio(r.ptOn.ms) << ',' << r.ptOn.reusedShare << ',' << r.framesOff << ','
+      << r.framesOn << ',' << r.relMseOff[0] << ',' << r.relMseOff[1] << ',' << r.relMseOn[0] << ','
+      << r.relMseOn[1] << ',' << r.trimmedOff[0] << ',' << r.trimmedOff[1] << ',' << r.trimmedOn[0]
+      << ',' << r.trimmedOn[1] << ',' << r.correlationOff << ',' << r.correlationOn << '\n';
+}
+
+const char* const kUsage =
+    "usage: photovr_bench_stereo [--out DIR] [--width W] [--height H] [--repeats N]\n"
+    "                            [--frames F] [--seeds K] [--reference-spp S] [--scene NAME]\n"
+    "Stereo path reuse on against off on every built-in scene (or --scene), both eyes at\n"
+    "W x H (120x135), 1 spp, 8 bounces: per-eye tracer times (median of N, 7), hybrid and pt;\n"
+    "the share of right-eye paths reused; equal-time per-eye relMSE and trimmed relMSE (F\n"
+    "frames off, 32, against as many as fit their tracer time on; means over K seeds, 4)\n"
+    "against a pt reference of S spp (1024); the correlation of the eyes' relative noise at "
+    "corresponding pixels.\n"
+    "Writes bench_stereo.csv to --out (out/bench).\n";
+
+int run(const Options& o) {
+  Args a;
+  a.out = o.text("--out", "out/bench");
+  a.width = o.integer("--width", 120, 8, 4096), a.height = o.integer("--height", 135, 8, 4096);
+  a.repeats = o.integer("--repeats", 7, 1, 1000);
+  a.frames = o.integer("--frames", 32, 2, 100000);
+  a.seeds = o.integer("--seeds", 4, 1, 1000);
+  a.referenceSpp = o.integer("--reference-spp", 1024, 1, 1 << 20);
+  const std::string only = o.has("--scene") ? builtinSceneArgument(o.text("--scene", "")) : "";
+  const std::unique_ptr<gl::Context> gl = gl::Context::createHeadless();
+  std::printf("bench_stereo: %dx%d x 2 eyes, 1 spp, 8 bounces; GL: %s\n", a.width, a.height,
+              gl->renderer().c_str());
+  std::filesystem::create_directories(a.out);
+  std::ofstream csv(a.out + "/bench_stereo.csv");
+  csv << "scene,hybrid_off_left_ms,hybrid_off_right_ms,hybrid_on_left_ms,hybrid_on_right_ms,"
+         "hybrid_right_over_left,hybrid_reused_share,pt_off_left_ms,pt_off_right_ms,"
+         "pt_on_left_ms,pt_on_right_ms,pt_right_over_left,pt_reused_share,frames_off,frames_on,"
+         "relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,trimmed_off_left,"
+         "trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
+         "correlation_on\n";
+  for (const std::string& name : builtinSceneNames()) {
+    if (!only.empty() && name != only) continue;
+    const Scene scene = makeBuiltinScene(name);
+    const View view = viewOf(scene);
+    HybridRenderer renderer(scene, a.width, a.height, TraceSettings{});
+    Row row;
+    row.scene = name;
+    timeHybrid(renderer, view, a, row);
+    timePt(renderer.traceContext(), view, a, row);
+    measureQuality(renderer, scene, view, a, row);
+    print(row, csv);
+    std::fflush(stdout);
+  }
+  std::printf("wrote %s/bench_stereo.csv\n", a.out.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace photovr
+
+int main(int argc, char** argv) {
+  return photovr::benchMain(argc, argv, photovr::kUsage,
+                            {"--out", "--width", "--height", "--repeats", "--frames",
+                             "--reference-spp", "--scene", "--seeds"},
+                            {}, photovr::run);
+}

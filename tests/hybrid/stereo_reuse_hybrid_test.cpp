@@ -1,0 +1,59 @@
+// Stereo path reuse in the hybrid frame (trace/stereo_reuse.h): the right eye's samples
+// continue from its rasterized hits and reuse the left eye's paths; the right eye's
+// converged image must be the one its own paths give, within Monte Carlo error.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/builtin_scenes.h"
+#include "hybrid/hybrid_renderer.h"
+#include "tests/gl/gl_test_util.h"
+#include "tests/trace/image_statistics.h"
+
+namespace photovr {
+namespace {
+
+// Right eye, reuse on against off, every built-in scene: region z-test of 128 frames at
+// 32 x 36 (tests/trace/image_statistics.h: 17 tests at |z| < 4). The frames' G-buffers
+// move with the jitter as a headset's do, so the partner test runs on rasterized hits.
+TEST(StereoReuseHybrid, RightEyeConvergesToItsOwnPathsImage) {
+  constexpr int kW = 32, kH = 36, kFrames = 128;
+  testing::osmesaContext();
+  for (const std::string& name : builtinSceneNames()) {
+    const Scene scene = makeBuiltinScene(name);
+    StereoRig rig;
+    rig.head = poseOf(scene.cameras.at(0));
+    HybridRenderer renderer(scene, kW, kH, TraceSettings{});
+    std::array<std::vector<std::vector<glm::vec3>>, 2> right;
+    uint64_t reused = 0, paths = 0;
+    for (int on = 0; on < 2; ++on) {
+      TraceSettings s;
+      s.stereoReuse = on == 1;
+      renderer.setSettings(s);
+      for (int k = 0; k < kFrames; ++k) {
+        const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, uint32_t(k));
+        const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, kW, kH, jitter),
+                                               rig.eye(Eye::Right, kW, kH, jitter)};
+        FrameTimes t;
+        auto img = renderer.render(eyes, 2, uint32_t(k), &t);
+        if (on) reused += t.eyeReusedPaths[1], paths += t.eyePaths[1];
+        right[on].push_back(img[1].color);
+        renderer.recycle(std::move(img));
+      }
+    }
+    const double z =
+        testing::maxRegionZ(testing::statisticsOf(right[1], kW, kH),
+                            testing::statisticsOf(right[0], kW, kH), testing::kRegions);
+    EXPECT_LT(z, testing::kMaxZ) << name;
+    // Most of a right eye sees what the left eye sees; the rest (the other eye's hidden
+    // surfaces, the field's edge, smooth lobes) traces its own paths.
+    EXPECT_GT(double(reused), 0.5 * double(paths)) << name;
+    std::printf("  %-8s reused %.3f of the right eye's paths, max region |z| %.2f\n", name.c_str(),
+                double(reused) / double(paths), z);
+  }
+}
+
+}  // namespace
+}  // namespace photovr

@@ -1,0 +1,63 @@
+#include "trace/stereo_reuse.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace photovr {
+
+void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
+  camera = cam;
+  stride = samplesPerPixel;
+  // Resized, not cleared: a slot counts only if this frame's generation stamped it (at
+  // 960 x 1080 the slots are ~100 MB, too much to clear per frame).
+  const size_t n = size_t(cam.width) * cam.height * stride;
+  bounces.resize(n);
+  stamps.resize(n, 0);
+  if (++generation == 0) {  // after 2^32 frames: start over with every stamp stale
+    std::fill(stamps.begin(), stamps.end(), 0);
+    generation = 1;
+  }
+  const glm::vec3 dx = cam.rayDx(), dy = cam.rayDy(), base = cam.rayBase();
+  toWindow = glm::inverse(glm::mat3(dx, dy, base));
+  const glm::vec3 centre = base + dx * (0.5f * cam.width) + dy * (0.5f * cam.height);
+  pixelAngle = glm::length(dx) / glm::length(centre);
+}
+
+namespace {
+
+// The lobe test of kReuseMinRoughness: alpha against the angle between the views.
+bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3& toRight) {
+  if (hit.bsdf.roughness < kReuseMinRoughness) return false;
+  const float c = glm::dot(glm::normalize(toLeft), glm::normalize(toRight));
+  return roughnessToAlpha(hit.bsdf.roughness) >= std::acos(std::min(1.0f, c));
+}
+
+}  // namespace
+
+const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, const glm::vec3& eye,
+                               glm::vec2 offset2, uint32_t sample) {
+  if (sample >= left.stride) return nullptr;
+  const glm::vec3 offset = hit.position - left.camera.pose.position;
+  if (!roughEnough(hit, -offset, eye - hit.position)) return nullptr;
+  const glm::vec3 w = left.toWindow * offset;  // (px t, py t, t): the linear ray map inverted
+  if (!(w.z > 0.0f)) return nullptr;           // behind the left eye (or NaN)
+  // The left pixel whose sample (at its centre + offset2, as this one's) is nearest: the
+  // same left pixel in every frame while the disparity stays (offset2 changes per frame),
+  // so the right pixel keeps one left pixel's stratified sequence.
+  const float px = w.x / w.z - offset2.x, py = w.y / w.z - offset2.y;
+  if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
+        py < float(left.camera.height)))
+    return nullptr;
+  const size_t pixel = size_t(int(py)) * size_t(left.camera.width) + size_t(int(px));
+  const size_t slot = pixel * left.stride + sample;
+  if (left.stamps[slot] != left.generation) return nullptr;  // no left path this frame
+  const FirstBounce& b = left.bounces[slot];
+  if (b.instance != hit.instance) return nullptr;  // another object
+  if (glm::dot(b.normal, hit.shadingNormal) < kPartnerNormalCos) return nullptr;
+  const float footprint = left.pixelAngle * glm::length(offset);
+  const glm::vec3 d = b.position - hit.position;
+  if (glm::dot(d, d) > (kPartnerPixels * footprint) * (kPartnerPixels * footprint)) return nullptr;
+  return &b;
+}
+
+}  // namespace photovr

@@ -1,0 +1,113 @@
+// Stereo path reuse (issue 21; the thesis's future work, sec. 4.2.2 "Ray/Path reprojection"):
+// the right eye's sample at a surface the left eye also sees takes the left sample's path
+// beyond the first hit instead of tracing its own.
+//
+// The shift keeps the direction (Lin et al., "Generalized Resampled Importance Sampling",
+// SIGGRAPH 2022, sec. 5, calls it random replay; its Jacobian in solid angle is 1): the right
+// sample at x1R (its own primary hit, shaded with its own material and view) takes the left
+// sample's bounce direction w, drawn at x1L with pdf(w | x1L, woL), and the radiance L(w)
+// the left path brought back along it. Its bounce term is
+//
+//   f(x1R, woR, w) |cos th1R| (w_bsdf(w) Le(x2) + L_beyond(x2)) / pdf(w | x1L, woL),
+//
+// an importance-sampled estimate of the right vertex's reflection integral wherever the left
+// pdf covers the right lobe (the roughness test below). Le(x2), the emission the left ray
+// found, is weighted against the right sample's own NEE with the power heuristic of the right
+// vertex's own pdfs, so the two weights sum to one for every direction (unbiased MIS; Veach
+// 1997 sec. 9.2). The right sample's NEE draws the left sample's numbers from its own x1R,
+// with its own shadow ray, so direct light is exact and its noise matches the left eye's.
+//
+// The approximation: the radiance arriving at x1R along w is taken as the radiance arriving
+// at x1L along w. The two points lie within kPartnerPixels footprints of each other, so only
+// what is about that close to the surface (contact, corners) differs; it blurs the incident
+// light by that distance. Measured in tests/trace/stereo_reuse_test.cpp (per-region z-test
+// against the right eye's own paths) and bench/bench_stereo.cpp. Reconnecting to x2 with the
+// area-measure Jacobian instead (exact geometry at x1R) was tried: its Jacobian
+// |cos th2R| |x2 - x1L|^2 / (|cos th2L| |x2 - x1R|^2) spikes where x2 is near x1 or seen at
+// grazing angles, and the right eye's relMSE at equal time came out 1.08x better than off on
+// cornell against 1.75x for this shift (docs/MEASUREMENTS.md, "Stereo path reuse").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "trace/bsdf.h"
+#include "trace/rng.h"
+#include "trace/surface.h"
+
+namespace photovr {
+
+// What the right eye needs of one left sample's path.
+struct FirstBounce {
+  static constexpr uint32_t kNone = ~0u;
+  glm::vec3 position{0.0f}, normal{0.0f};  // x1L and its shading normal
+  uint32_t instance = kNone;               // x1L's instance; kNone: no path recorded
+  bool sampled = false;  // the left path sampled a bounce at x1L (false: its indirect was 0)
+  bool hit = false;      // ... whose ray found x2 (false: it left along 'dir')
+  glm::vec3 dir{0.0f};   // the bounce direction at x1L
+  float pdf = 0.0f;      // its solid-angle pdf
+  glm::vec3 x2{0.0f}, n2{0.0f};  // x2 and its geometric normal (the light pdf of Le(x2))
+  uint32_t instance2 = 0, triangle2 = 0;
+  glm::vec3 emitted{0.0f};  // Le(x2 -> x1L), or the environment along 'dir', unweighted
+  glm::vec3 beyond{0.0f};   // radiance leaving x2 towards x1L without Le(x2), per unit throughput
+  PathSampler sampler;      // the left path's numbers: the right sample's NEE draws them too
+};
+
+// The left eye's first bounces of one frame, for its right eye.
+struct StereoPaths {
+  EyeCamera camera;          // the left eye's
+  uint32_t stride = 0;       // slots per pixel: samples [0, stride) of a pixel are recorded
+  float pixelAngle = 0.0f;   // angle subtended by one pixel at the image centre (radians)
+  glm::mat3 toWindow{1.0f};  // inverse of [rayDx rayDy rayBase]: world offset -> (px, py, 1) * t
+  std::vector<FirstBounce> bounces;  // pixel * stride + sample
+  std::vector<uint32_t> stamps;      // per slot: the generation that wrote it
+  uint32_t generation = 0;           // this frame's
+
+  // Empties every slot for a frame of 'camera' with up to 'samplesPerPixel' samples.
+  void reset(const EyeCamera& camera, uint32_t samplesPerPixel);
+  // Slot of a pixel's sample for this frame's left path to record into, or null.
+  FirstBounce* slot(size_t pixel, uint32_t sample) {
+    if (sample >= stride) return nullptr;
+    const size_t i = pixel * stride + sample;
+    stamps[i] = generation;
+    return &bounces[i];
+  }
+};
+
+// Primary hits whose shading normals are closer than acos(kPartnerNormalCos) ~ 25 degrees,
+// and whose positions are within kPartnerPixels footprints of a left pixel, are the same
+// surface point for the shift (the footprint of the nearest left pixel is up to ~0.7 pixel
+// away; 1.5 leaves room for its jitter).
+constexpr float kPartnerNormalCos = 0.9f;
+constexpr float kPartnerPixels = 1.5f;
+// A right vertex reuses only where the left sample's pdf covers its lobe well: its GGX
+// alpha at least the angle between the eyes' views of it (then the right lobe's peak, which
+// the view change moves by about half that angle in half-vector space, sits where the left
+// lobe's D is still >= 0.64 of its peak: 1 / (1 + 1/4)^2, so f / pdf grows by <= 1.6x), and
+// never below mirror-like roughness (kMirrorRoughness, 0.1: alpha 0.01 is a near-delta lobe
+// whatever the angle). Smoother vertices (glossy lobes, mirrors) trace their own paths.
+constexpr float kReuseMinRoughness = 0.1f;
+
+// How one eye's tracer takes part: the left eye records into 'record' (which it resets),
+// the right eye reuses 'reuse'; both null: stereo reuse off.
+struct StereoRole {
+  StereoPaths* record = nullptr;
+  const StereoPaths* reuse = nullptr;
+};
+
+// Eye 'eye' of a frame of 'eyeCount' eyes: its role when stereo reuse is 'on'.
+inline StereoRole stereoRoleOf(bool on, int eye, int eyeCount, StereoPaths& paths) {
+  if (!on || eyeCount != 2) return {};
+  return eye == 0 ? StereoRole{&paths, nullptr} : StereoRole{nullptr, &paths};
+}
+
+// The left sample the right eye's sample 'sample' at 'hit', seen from 'eye' (the right
+// eye's position) through its pixel's centre + 'offset' (the sample's sub-pixel position,
+// the same in both eyes), reuses, or null: its own path.
+const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, const glm::vec3& eye,
+                               glm::vec2 offset, uint32_t sample);
+
+}  // namespace photovr
