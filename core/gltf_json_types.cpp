@@ -58,7 +58,7 @@ Member objects(std::string_view name, const Schema& schema) {
   return {name, Kind::ObjectArray, &schema};
 }
 
-// glTF 2.0 §5 (the members the loader reads) and the three extensions it supports.
+// glTF 2.0 §5 (the members the loader reads) and the extensions it supports.
 const Schema kTextureTransform{
     {numbers("offset", 2), number("rotation"), numbers("scale", 2), integer("texCoord")}};
 const Schema kTextureInfoExtensions{{object("KHR_texture_transform", kTextureTransform)}};
@@ -72,7 +72,18 @@ const Schema kPbr{{numbers("baseColorFactor", 4), object("baseColorTexture", kTe
                    number("metallicFactor"), number("roughnessFactor"),
                    object("metallicRoughnessTexture", kTextureInfo)}};
 const Schema kEmissiveStrength{{number("emissiveStrength")}};
-const Schema kMaterialExtensions{{object("KHR_materials_emissive_strength", kEmissiveStrength)}};
+const Schema kIor{{number("ior")}};
+const Schema kSpecular{{number("specularFactor"), numbers("specularColorFactor", 3),
+                        object("specularTexture", kTextureInfo),
+                        object("specularColorTexture", kTextureInfo)}};
+const Schema kTransmission{
+    {number("transmissionFactor"), object("transmissionTexture", kTextureInfo)}};
+const Schema kVolume{{number("thicknessFactor"), object("thicknessTexture", kTextureInfo),
+                      number("attenuationDistance"), numbers("attenuationColor", 3)}};
+const Schema kMaterialExtensions{
+    {object("KHR_materials_emissive_strength", kEmissiveStrength),
+     object("KHR_materials_ior", kIor), object("KHR_materials_specular", kSpecular),
+     object("KHR_materials_transmission", kTransmission), object("KHR_materials_volume", kVolume)}};
 const Schema kMaterial{{string("name"),
                         object("pbrMetallicRoughness", kPbr),
                         object("normalTexture", kNormalTextureInfo),

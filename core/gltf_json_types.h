@@ -13,7 +13,8 @@ namespace photovr {
 
 // Throws InputError(path, ...) for the first member of the wrong type or array length
 // among those the loader uses (glTF 2.0 §5, KHR_lights_punctual,
-// KHR_materials_emissive_strength, KHR_texture_transform). Members photovr does not read
+// KHR_materials_emissive_strength, _ior, _specular, _transmission, _volume,
+// KHR_texture_transform). Members photovr does not read
 // are not checked; JSON that does not parse is left to tinygltf's own message.
 void checkGltfJsonTypes(const uint8_t* json, size_t size, const std::string& path);
 

@@ -37,7 +37,9 @@ constexpr size_t kMaxZeroAccessorCount = size_t(1) << 26;
 constexpr int kTextureNotLoaded = -2;
 
 const std::vector<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+    "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_specular", "KHR_materials_transmission",      "KHR_materials_volume",
+    "KHR_texture_transform"};
 
 // ---------------------------------------------------------------------------------------
 // Reading and parsing the file
@@ -243,8 +245,12 @@ std::string unsupportedIn(const std::vector<std::string>& names) {
 }
 
 // glTF 2.0 §3.12: a loader must refuse a file that requires an extension it lacks.
-void checkExtensions(const tg::Model& model, const std::string& path,
-                     std::vector<std::string>& warnings) {
+void checkExtensions(const tg::Model& model, const std::string& path, Scene& scene) {
+  std::vector<std::string>& warnings = scene.warnings;
+  for (const std::string& name : model.extensionsUsed)
+    scene.extensions.push_back(
+        {name, std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
+                   kSupportedExtensions.end()});
   if (const std::string required = unsupportedIn(model.extensionsRequired); !required.empty())
     throw InputError(path, "requires unsupported extension(s) " + required);
   if (const std::string used = unsupportedIn(model.extensionsUsed); !used.empty())
@@ -628,6 +634,64 @@ float emissiveStrength(const tg::Material& gm) {
   return numberOr(it->second, "emissiveStrength", 1.0f);
 }
 
+const tg::Value* materialExtension(const tg::Material& gm, const char* name) {
+  const auto it = gm.extensions.find(name);
+  return it != gm.extensions.end() && it->second.IsObject() ? &it->second : nullptr;
+}
+
+glm::vec3 vec3Or(const tg::Value& object, const char* key, glm::vec3 fallback) {
+  if (!object.Has(key)) return fallback;
+  const tg::Value& a = object.Get(key);
+  if (!a.IsArray() || a.ArrayLen() != 3) return fallback;
+  glm::vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    if (!a.Get(k).IsNumber()) return fallback;
+    v[k] = float(a.Get(k).GetNumberAsDouble());
+  }
+  return v;
+}
+
+// A textureInfo object inside an extension, as tinygltf parses the core ones.
+TextureRef extensionTexture(Loader& ld, const tg::Value& ext, const char* key,
+                            const std::string& where) {
+  tg::TextureInfo info;
+  if (!ext.Has(key) || !ext.Get(key).IsObject()) return TextureRef{};
+  const tg::Value& t = ext.Get(key);
+  if (t.Has("index") && t.Get("index").IsInt()) info.index = t.Get("index").GetNumberAsInt();
+  if (t.Has("texCoord") && t.Get("texCoord").IsInt())
+    info.texCoord = t.Get("texCoord").GetNumberAsInt();
+  if (t.Has("extensions") && t.Get("extensions").IsObject()) {
+    const tg::Value& e = t.Get("extensions");
+    for (const std::string& name : e.Keys()) info.extensions[name] = e.Get(name);
+  }
+  return textureRef(ld, info, where + " " + key);
+}
+
+// KHR_materials_ior, _specular, _transmission and _volume (their specifications' defaults).
+void convertDielectric(Loader& ld, const tg::Material& gm, Material& m, const std::string& where) {
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_ior"))
+    m.ior = numberOr(*e, "ior", 1.5f);
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_specular")) {
+    m.specularFactor = numberOr(*e, "specularFactor", 1.0f);
+    m.specularColorFactor = vec3Or(*e, "specularColorFactor", glm::vec3(1.0f));
+    m.specularTexture = extensionTexture(ld, *e, "specularTexture", where);
+    m.specularColorTexture = extensionTexture(ld, *e, "specularColorTexture", where);
+  }
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_transmission")) {
+    m.transmissionFactor = numberOr(*e, "transmissionFactor", 0.0f);
+    m.transmissionTexture = extensionTexture(ld, *e, "transmissionTexture", where);
+  }
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_volume")) {
+    m.thicknessFactor = numberOr(*e, "thicknessFactor", 0.0f);
+    m.attenuationColor = vec3Or(*e, "attenuationColor", glm::vec3(1.0f));
+    m.attenuationDistance = numberOr(*e, "attenuationDistance", 0.0f);
+    if (e->Has("thicknessTexture"))
+      ld.warn(where +
+              ": KHR_materials_volume thicknessTexture is not used (only whether the "
+              "thickness is 0: a thin wall, or a volume)");
+  }
+}
+
 AlphaMode alphaMode(Loader& ld, const tg::Material& gm, const std::string& where) {
   if (gm.alphaMode == "MASK") return AlphaMode::Mask;
   if (gm.alphaMode == "BLEND") {
@@ -652,6 +716,28 @@ bool within(float v, float lo, float hi) {
   return v >= lo && v <= hi;  // false for NaN
 }
 
+// The extensions' ranges: ior 0 or in [1, 10] (KHR_materials_ior allows 0 and any value
+// >= 1; above 10 no known material, and F0 passes 0.67), specular strength and
+// transmission in [0, 1], specular colour >= 0 (values above 1 are the extension's way to
+// reach f0 1 at low ior; the BSDF clamps f0), thickness >= 0, attenuation colour in [0, 1]
+// and distance > 0 when given.
+void checkDielectric(const Loader& ld, const Material& m, const std::string& what) {
+  if (!(m.ior == 0.0f || within(m.ior, 1, 10)))
+    ld.fail(what + "KHR_materials_ior ior must be 0 or in [1, 10]");
+  const glm::vec3 sc = m.specularColorFactor, ac = m.attenuationColor;
+  if (!within(m.specularFactor, 0, 1) ||
+      !(within(sc.r, 0, 1e6f) && within(sc.g, 0, 1e6f) && within(sc.b, 0, 1e6f)))
+    ld.fail(what + "KHR_materials_specular factor must be in [0, 1], its colour >= 0");
+  if (!within(m.transmissionFactor, 0, 1))
+    ld.fail(what + "KHR_materials_transmission factor must be in [0, 1]");
+  if (!within(m.thicknessFactor, 0, 1e30f) ||
+      !(within(ac.r, 0, 1) && within(ac.g, 0, 1) && within(ac.b, 0, 1)) ||
+      !(m.attenuationDistance == 0.0f || within(m.attenuationDistance, 1e-30f, 1e30f)))
+    ld.fail(what +
+            "KHR_materials_volume thickness must be >= 0, attenuation colour in [0, 1] "
+            "and distance > 0");
+}
+
 // glTF 2.0 §5.19-5.22's ranges for what reflects light: base colour, metallic, roughness
 // and occlusion strength in [0, 1] (above 1 a surface reflects more than it receives, and
 // each bounce multiplies the excess), alpha cutoff >= 0. Emission is radiance, not a ratio:
@@ -671,6 +757,7 @@ void checkMaterial(const Loader& ld, const Material& m) {
   const float brightest = std::max({e.r, e.g, e.b}) * m.emissiveStrength;
   if (!(e.r >= 0 && e.g >= 0 && e.b >= 0 && m.emissiveStrength >= 0 && brightest <= 1e20f))
     ld.fail(what + "emissive factor and strength must be >= 0 with their product at most 1e20");
+  checkDielectric(ld, m, what);
 }
 
 Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
@@ -688,6 +775,7 @@ Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
   m.alphaMode = alphaMode(ld, gm, where);
   m.alphaCutoff = float(gm.alphaCutoff);
   m.doubleSided = gm.doubleSided;
+  convertDielectric(ld, gm, m, where);
   checkMaterial(ld, m);
   convertTextures(ld, gm, m, where);
   return m;
@@ -1028,11 +1116,14 @@ Scene loadGltf(const std::string& path) {
   const std::vector<uint8_t> bytes = readFile(path);
   std::vector<std::string> warnings;
   const tg::Model model = parseModel(path, bytes, warnings);
-  checkExtensions(model, path, warnings);
+  Scene extensions;
+  extensions.warnings = std::move(warnings);
+  checkExtensions(model, path, extensions);
   checkBufferViews(model, path);
   Loader ld(path, model);
   ld.scene.name = path;
-  ld.scene.warnings = std::move(warnings);
+  ld.scene.warnings = std::move(extensions.warnings);
+  ld.scene.extensions = std::move(extensions.extensions);
   for (size_t i = 0; i < model.materials.size(); ++i)
     ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
   for (int root : rootNodes(ld)) placeTree(ld, root);

@@ -31,7 +31,7 @@ struct Writer {
   std::string path;
   tg::Model model;
   bool usesTextureTransform = false;
-  bool usesEmissiveStrength = false;
+  std::vector<std::string> materialExtensions{};  // declared in extensionsUsed, in first-use order
 
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(path, problem); }
   std::vector<unsigned char>& bin() { return model.buffers[0].data; }
@@ -187,6 +187,13 @@ void setTexture(Writer& w, Info& info, const TextureRef& ref, const std::string&
   w.usesTextureTransform = true;
 }
 
+void addExtension(Writer& w, tg::Material& out, const std::string& name, tg::Value::Object fields) {
+  out.extensions[name] = tg::Value(std::move(fields));
+  if (std::find(w.materialExtensions.begin(), w.materialExtensions.end(), name) ==
+      w.materialExtensions.end())
+    w.materialExtensions.push_back(name);
+}
+
 const char* alphaModeName(AlphaMode mode) {
   switch (mode) {
     case AlphaMode::Mask:
@@ -209,11 +216,57 @@ void setFactors(Writer& w, const Material& m, tg::Material& out) {
   out.alphaMode = alphaModeName(m.alphaMode);
   out.alphaCutoff = m.alphaCutoff;
   out.doubleSided = m.doubleSided;
-  if (m.emissiveStrength != 1.0f) {
-    tg::Value::Object strength;
-    strength["emissiveStrength"] = tg::Value(double(m.emissiveStrength));
-    out.extensions["KHR_materials_emissive_strength"] = tg::Value(strength);
-    w.usesEmissiveStrength = true;
+  if (m.emissiveStrength != 1.0f)
+    addExtension(w, out, "KHR_materials_emissive_strength",
+                 {{"emissiveStrength", tg::Value(double(m.emissiveStrength))}});
+}
+
+tg::Value vec3Value(const glm::vec3& v) {
+  return numbers({v.x, v.y, v.z});
+}
+
+// A textureInfo inside an extension, as setTexture writes the core ones.
+void addTextureValue(Writer& w, tg::Value::Object& ext, const char* key, const TextureRef& ref,
+                     const std::string& material) {
+  if (!ref.valid()) return;
+  tg::TextureInfo info;
+  setTexture(w, info, ref, material);
+  tg::Value::Object o;
+  o["index"] = tg::Value(info.index);
+  if (info.texCoord != 0) o["texCoord"] = tg::Value(info.texCoord);
+  if (!info.extensions.empty()) {
+    tg::Value::Object e(info.extensions.begin(), info.extensions.end());
+    o["extensions"] = tg::Value(e);
+  }
+  ext[key] = tg::Value(o);
+}
+
+// KHR_materials_ior, _specular, _transmission and _volume, each only where it differs from
+// the core model (the loader's defaults).
+void setDielectric(Writer& w, const Material& m, tg::Material& out) {
+  const Material core;
+  if (m.ior != core.ior)
+    addExtension(w, out, "KHR_materials_ior", {{"ior", tg::Value(double(m.ior))}});
+  if (m.specularFactor != core.specularFactor ||
+      m.specularColorFactor != core.specularColorFactor || m.specularTexture.valid() ||
+      m.specularColorTexture.valid()) {
+    tg::Value::Object e{{"specularFactor", tg::Value(double(m.specularFactor))},
+                        {"specularColorFactor", vec3Value(m.specularColorFactor)}};
+    addTextureValue(w, e, "specularTexture", m.specularTexture, m.name);
+    addTextureValue(w, e, "specularColorTexture", m.specularColorTexture, m.name);
+    addExtension(w, out, "KHR_materials_specular", std::move(e));
+  }
+  if (m.transmissionFactor != core.transmissionFactor || m.transmissionTexture.valid()) {
+    tg::Value::Object e{{"transmissionFactor", tg::Value(double(m.transmissionFactor))}};
+    addTextureValue(w, e, "transmissionTexture", m.transmissionTexture, m.name);
+    addExtension(w, out, "KHR_materials_transmission", std::move(e));
+  }
+  if (!m.thinWalled()) {
+    tg::Value::Object e{{"thicknessFactor", tg::Value(double(m.thicknessFactor))},
+                        {"attenuationColor", vec3Value(m.attenuationColor)}};
+    if (m.attenuationDistance > 0.0f)
+      e["attenuationDistance"] = tg::Value(double(m.attenuationDistance));
+    addExtension(w, out, "KHR_materials_volume", std::move(e));
   }
 }
 
@@ -221,6 +274,7 @@ void addMaterial(Writer& w, const Material& m) {
   tg::Material out;
   out.name = m.name;
   setFactors(w, m, out);
+  setDielectric(w, m, out);
   setTexture(w, out.pbrMetallicRoughness.baseColorTexture, m.baseColorTexture, m.name);
   setTexture(w, out.pbrMetallicRoughness.metallicRoughnessTexture, m.metallicRoughnessTexture,
              m.name);
@@ -322,7 +376,7 @@ void addCamera(Writer& w, const Camera& camera) {
 void declareExtensions(Writer& w) {
   // KHR_lights_punctual is declared by tinygltf's serializer when lights exist.
   if (w.usesTextureTransform) w.model.extensionsUsed.push_back("KHR_texture_transform");
-  if (w.usesEmissiveStrength) w.model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+  for (const std::string& name : w.materialExtensions) w.model.extensionsUsed.push_back(name);
 }
 
 void buildModel(Writer& w) {

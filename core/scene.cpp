@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace photovr {
@@ -24,6 +25,21 @@ bool TextureTransform::isIdentity() const {
 bool Material::isEmissive() const {
   const glm::vec3 e = emission();
   return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+}
+
+float Material::iorF0() const {
+  const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
+  return float(r * r);
+}
+
+glm::vec3 Material::absorption() const {
+  if (thinWalled() || !(attenuationDistance > 0.0f)) return glm::vec3(0.0f);
+  glm::vec3 sigma;
+  // A colour of 0 would be an infinite coefficient: 1e-6 of the light survives one
+  // attenuation distance instead, absorbing everything in practice.
+  for (int c = 0; c < 3; ++c)
+    sigma[c] = -std::log(std::max(attenuationColor[c], 1e-6f)) / attenuationDistance;
+  return sigma;
 }
 
 size_t Scene::instancedTriangleCount() const {

@@ -61,8 +61,40 @@ struct Material {
   TextureRef occlusionTexture;          // linear, R
   TextureRef emissiveTexture;           // sRGB
 
+  // KHR_materials_ior: the dielectric's index of refraction (1.5 in core glTF; 0 is the
+  // extension's legacy value, reflectance 1 at normal incidence).
+  float ior = 1.5f;
+  // KHR_materials_specular: the dielectric layer's strength (both of glTF's dielectric_f0
+  // and dielectric_f90) and the tint of its f0. 0 leaves a pure Lambert surface.
+  float specularFactor = 1.0f;
+  glm::vec3 specularColorFactor{1.0f};
+  TextureRef specularTexture;       // linear, A = strength
+  TextureRef specularColorTexture;  // sRGB, RGB = tint
+  // KHR_materials_transmission: the share of the dielectric's diffuse lobe that is a rough
+  // dielectric BTDF instead (glass, water).
+  float transmissionFactor = 0.0f;
+  TextureRef transmissionTexture;  // linear, R
+  // KHR_materials_volume: thickness 0 is a thin-walled surface (light passes through
+  // without bending); above 0 the mesh bounds a medium of this ior that absorbs by
+  // Beer-Lambert with the attenuation colour reached after the attenuation distance.
+  float thicknessFactor = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
+  float attenuationDistance = 0.0f;  // 0 = infinite (no absorption), as the extension's default
+
   glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
   bool isEmissive() const;
+  // ((ior - 1) / (ior + 1))^2, the dielectric's reflectance at normal incidence from air;
+  // computed in double so the default ior gives exactly the float nearest 0.04.
+  float iorF0() const;
+  bool thinWalled() const { return !(thicknessFactor > 0.0f); }
+  // Whether back faces are invisible (glTF 3.9.5: single-sided). A transmissive volume's
+  // back faces are where light leaves it, so they stay whatever doubleSided says.
+  bool cullsBackFaces() const {
+    return !doubleSided && !(transmissionFactor > 0.0f && !thinWalled());
+  }
+  // Beer-Lambert's absorption coefficient inside the volume, per metre:
+  // -ln(attenuationColor) / attenuationDistance; 0 for a thin wall or no absorption.
+  glm::vec3 absorption() const;
 };
 
 // One glTF primitive: a triangle list with one material. Stored once, referenced by
@@ -153,6 +185,12 @@ struct Scene {
   std::vector<Camera> cameras;
   Environment environment;
   std::vector<std::string> warnings;  // non-fatal problems found while loading
+  // The file's extensionsUsed, each with whether photovr reads it (info lists them).
+  struct Extension {
+    std::string name;
+    bool read = false;
+  };
+  std::vector<Extension> extensions;
 
   size_t instancedTriangleCount() const;
   Bounds worldBounds() const;

@@ -16,8 +16,12 @@ static void hashMaterial(Hasher& h, const Material& m) {
   h.value(m.baseColorFactor).value(m.metallicFactor).value(m.roughnessFactor);
   h.value(m.emissiveFactor).value(m.emissiveStrength).value(m.normalScale);
   h.value(m.occlusionStrength).value(m.alphaMode).value(m.alphaCutoff).value(m.doubleSided);
-  for (const TextureRef* r : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                              &m.occlusionTexture, &m.emissiveTexture})
+  h.value(m.ior).value(m.specularFactor).value(m.specularColorFactor);
+  h.value(m.transmissionFactor).value(m.thicknessFactor).value(m.attenuationColor);
+  h.value(m.attenuationDistance);
+  for (const TextureRef* r :
+       {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
+        &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture})
     h.value(r->texture)
         .value(r->texCoord)
         .value(r->transform.offset)

@@ -100,7 +100,8 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
 }
 
 void describeMaterials(std::ostream& out, const Scene& scene) {
-  size_t emissive = 0, metal = 0, dielectric = 0, mixed = 0, mask = 0, blend = 0, twoSided = 0;
+  size_t emissive = 0, metal = 0, dielectric = 0, mixed = 0, mask = 0, blend = 0, twoSided = 0,
+         glass = 0;
   for (const Material& m : scene.materials) {
     emissive += m.isEmissive();
     metal += m.metallicFactor >= 1.0f;
@@ -109,10 +110,17 @@ void describeMaterials(std::ostream& out, const Scene& scene) {
     mask += m.alphaMode == AlphaMode::Mask;
     blend += m.alphaMode == AlphaMode::Blend;
     twoSided += m.doubleSided;
+    glass += m.transmissionFactor > 0.0f;
   }
   out << "materials: " << count(scene.materials.size()) << " (emissive " << emissive << ", metal "
       << metal << ", dielectric " << dielectric << ", partly metallic " << mixed << ", MASK "
-      << mask << ", BLEND " << blend << ", double-sided " << twoSided << ")\n";
+      << mask << ", BLEND " << blend << ", double-sided " << twoSided << ", transmissive " << glass
+      << ")\n";
+  if (scene.extensions.empty()) return;
+  out << "extensions:";
+  for (const Scene::Extension& e : scene.extensions)
+    out << " " << e.name << (e.read ? " (read)" : " (ignored)");
+  out << "\n";
 }
 
 void describeTextures(std::ostream& out, const Scene& scene) {
@@ -223,7 +231,7 @@ SceneFeatures analyzeScene(const Scene& scene) {
   f.areaLights = f.emissiveTriangles > 0;
   for (const Mesh& mesh : scene.meshes)  // as trace/embree_scene.cpp installs the filter
     if (const Material* m = materialOf(scene, mesh))
-      f.filteredMeshes += m->alphaMode == AlphaMode::Mask || !m->doubleSided;
+      f.filteredMeshes += m->alphaMode == AlphaMode::Mask || m->cullsBackFaces();
   f.environment = environmentEmits(scene.environment);
   size_t unused = 0;
   for (const bool u : used) unused += u ? 0 : 1;

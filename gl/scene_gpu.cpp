@@ -147,7 +147,7 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
     g.params =
         glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normalScale, mat.occlusionStrength);
     g.flags = glm::uvec4(mat.alphaMode == AlphaMode::Mask ? ALPHA_MASK : ALPHA_OPAQUE,
-                         mat.doubleSided ? 1u : 0u, 0u, 0u);
+                         mat.cullsBackFaces() ? 0u : 1u, 0u, 0u);
     const TextureRef* refs[SLOT_COUNT] = {&mat.baseColorTexture, &mat.metallicRoughnessTexture,
                                           &mat.normalTexture, &mat.occlusionTexture,
                                           &mat.emissiveTexture};
@@ -161,7 +161,7 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
       g.uvTransform[2 * s] = glm::vec4(t[0][0], t[1][0], t[2][0], 0.0f);
       g.uvTransform[2 * s + 1] = glm::vec4(t[0][1], t[1][1], t[2][1], 0.0f);
     }
-    doubleSided_.push_back(mat.doubleSided);
+    doubleSided_.push_back(!mat.cullsBackFaces());
     data.push_back(g);
   }
   if (data.empty()) data.emplace_back();

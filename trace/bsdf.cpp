@@ -27,13 +27,13 @@ bool reflectionPair(const BsdfVertex& v, const glm::vec3& wi, glm::vec3& h) {
 
 // The specular lobe with d = ggxD(h, alpha).
 glm::vec3 specular(const BsdfVertex& v, const glm::vec3& wi, const glm::vec3& h, float d) {
-  const glm::vec3 f = fresnelSchlick(v.f0, glm::dot(v.wo, h));
+  const glm::vec3 f = fresnelSchlick(v.f0, v.f90, glm::dot(v.wo, h));
   return f * (d * v.g1OverCosWo * ggxG1OverCos(wi, v.alpha) * 0.25f);
 }
 
 glm::vec3 diffuse(const BsdfVertex& v, const glm::vec3& wi) {
   const glm::vec3 one(1.0f);
-  return (one - v.fresnelWo) * (one - fresnelSchlick(v.f0, wi.z)) * v.diffuse * kInvPi;
+  return (one - v.fresnelWo) * (one - fresnelSchlick(v.f0, v.f90, wi.z)) * v.diffuse * kInvPi;
 }
 
 // The combined density of a reflection pair, with d = ggxD(h, alpha). Visible-normal
@@ -85,9 +85,23 @@ float ggxG1(const glm::vec3& w, float alpha) {
 }
 
 glm::vec3 fresnelSchlick(const glm::vec3& f0, float cosTheta) {
+  return fresnelSchlick(f0, 1.0f, cosTheta);
+}
+
+glm::vec3 fresnelSchlick(const glm::vec3& f0, float f90, float cosTheta) {
   const float m = 1.0f - std::clamp(cosTheta, 0.0f, 1.0f);
   const float m2 = m * m;
-  return f0 + (glm::vec3(1.0f) - f0) * (m2 * m2 * m);
+  return f0 + (glm::vec3(f90) - f0) * (m2 * m2 * m);
+}
+
+float fresnelDielectric(float cosThetaI, float eta) {
+  const float c = std::clamp(cosThetaI, 0.0f, 1.0f);
+  const float sin2T = (1.0f - c * c) / (eta * eta);  // Snell's law
+  if (!(sin2T < 1.0f)) return 1.0f;                  // total internal reflection (or NaN eta)
+  const float cosT = safeSqrt(1.0f - sin2T);
+  const float parallel = (eta * c - cosT) / (eta * c + cosT);
+  const float perpendicular = (c - eta * cosT) / (c + eta * cosT);
+  return 0.5f * (parallel * parallel + perpendicular * perpendicular);
 }
 
 glm::vec3 sampleGgxVndf(const glm::vec3& wo, float alpha, glm::vec2 u) {
@@ -128,19 +142,24 @@ BsdfLobes evalBsdfLobes(const BsdfParams& p, const glm::vec3& wo, const glm::vec
 }
 
 glm::vec3 diffuseAlbedo(const BsdfParams& p) {
-  return (1.0f - std::clamp(p.metallic, 0.0f, 1.0f)) * p.baseColor;
+  const float transmission = std::clamp(p.transmission, 0.0f, 1.0f);
+  return (1.0f - std::clamp(p.metallic, 0.0f, 1.0f)) * (1.0f - transmission) * p.baseColor;
 }
 
 glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
-  // Karis 2014, EnvBRDFApprox (after Lazarov 2013): scale and bias of F0.
-  const glm::vec3 f0 =
-      glm::mix(glm::vec3(kDielectricF0), p.baseColor, std::clamp(p.metallic, 0.0f, 1.0f));
-  const float r = std::clamp(p.roughness, 0.0f, 1.0f), nv = std::clamp(cosThetaO, 0.0f, 1.0f);
+  // Karis 2014, EnvBRDFApprox (after Lazarov 2013): scale A and bias B with F = f0 A +
+  // f90 B. The glass lobe's part is its Fresnel split at the macro-surface.
+  const float nv = std::clamp(cosThetaO, 0.0f, 1.0f);
+  const BsdfVertex v = prepareBsdf(p, glm::vec3(0.0f, safeSqrt(1.0f - nv * nv), nv));
+  const float r = std::clamp(p.roughness, 0.0f, 1.0f);
   const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f), c1(1.0f, 0.0425f, 1.04f, -0.04f);
   const glm::vec4 q = r * c0 + c1;
   const float a004 = std::min(q.x * q.x, std::exp2(-9.28f * nv)) * q.x + q.y;
   const glm::vec2 ab = glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(q.z, q.w);
-  return f0 * ab.x + ab.y;
+  const glm::vec3 brdf = v.f0 * ab.x + v.f90 * ab.y;
+  if (v.glass == 0.0f) return brdf;
+  const float fr = fresnelDielectric(nv, v.eta);
+  return v.brdfWeight * brdf + v.glass * (fr + (1.0f - fr) * v.tint);
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
@@ -167,50 +186,205 @@ BsdfSample sampleBsdf(const BsdfParams& p, const glm::vec3& wo, glm::vec2 u) {
   return sampleBsdf(prepareBsdf(p, wo), u);
 }
 
-BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
-  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN).
-  const glm::vec3 base =
-      glm::clamp(glm::vec3(isFinite(p.baseColor) ? p.baseColor : glm::vec3(0.0f)), 0.0f, 1.0f);
-  const float metallic = isFinite(p.metallic) ? std::clamp(p.metallic, 0.0f, 1.0f) : 0.0f;
-  BsdfVertex v;
-  v.wo = wo;
-  v.alpha = roughnessToAlpha(p.roughness);
-  v.f0 = glm::mix(glm::vec3(kDielectricF0), base, metallic);
-  v.diffuse = (1.0f - metallic) * base;
-  v.fresnelWo = fresnelSchlick(v.f0, wo.z);
-  v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);
-  v.specularProbability = specularProbability(v.fresnelWo, v.diffuse);
-  return v;
+namespace {
+
+// Reflection probability within the glass lobe: Fresnel at the macro-surface, kept within
+// [0.05, 0.95] so that both halves are sampled wherever their microfacets contribute (under
+// total internal reflection at the macro-surface rough microfacets still refract). f cos /
+// pdf of a half is then F(wo.h) / P_R or (1 - F(wo.h)) / (1 - P_R) times bounded factors.
+constexpr float kMinGlassHalfProbability = 0.05f;
+
+// The glass lobe's value and density at wi, the density given the lobe was chosen.
+struct LobeEval {
+  glm::vec3 f{0.0f};
+  float pdf = 0.0f;
+};
+
+LobeEval glassReflection(const BsdfVertex& v, const glm::vec3& wi) {
+  glm::vec3 h;
+  if (!halfVector(v.wo, wi, h)) return {};
+  const float d = ggxD(h, v.alpha);
+  const float fr = fresnelDielectric(glm::dot(v.wo, h), v.eta);
+  const float g = v.g1OverCosWo * d * 0.25f;  // D G1(wo) / (4 wo.z), the VNDF through reflection
+  return {glm::vec3(fr * g * ggxG1OverCos(wi, v.alpha)), v.reflectProbability * g};
 }
 
-BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
+// Thin wall: the reflection lobe at wi mirrored back above the surface, weighted by 1 - F.
+LobeEval glassThinTransmission(const BsdfVertex& v, const glm::vec3& wi) {
+  const glm::vec3 mirrored(wi.x, wi.y, -wi.z);
+  glm::vec3 h;
+  if (!halfVector(v.wo, mirrored, h)) return {};
+  const float d = ggxD(h, v.alpha);
+  const float t = 1.0f - fresnelDielectric(glm::dot(v.wo, h), v.eta);
+  const float g = v.g1OverCosWo * d * 0.25f;
+  return {v.tint * (t * g * ggxG1OverCos(mirrored, v.alpha)), (1.0f - v.reflectProbability) * g};
+}
+
+// Refraction into the far side: Walter et al. 2007's generalised half-vector h ~ wo + eta
+// wi (eq. 16), its Jacobian |wi.h| / (wi.h + wo.h / eta)^2 (eq. 17, pbrt-v4's form) and the
+// BTDF of eq. 21 with the 1 / eta^2 of radiance transport.
+LobeEval glassRefraction(const BsdfVertex& v, const glm::vec3& wi) {
+  glm::vec3 h = v.wo + v.eta * wi;
+  const float len2 = glm::dot(h, h);
+  if (!(len2 > 0.0f)) return {};
+  h *= (h.z < 0.0f ? -1.0f : 1.0f) / std::sqrt(len2);
+  const float oh = glm::dot(v.wo, h), ih = glm::dot(wi, h);
+  if (!(oh > 0.0f && ih < 0.0f)) return {};  // each direction on its own side of h
+  const float denom = ih + oh / v.eta;
+  const float denom2 = denom * denom;
+  if (!(denom2 > 0.0f)) return {};
+  const float d = ggxD(h, v.alpha);
+  const float t = 1.0f - fresnelDielectric(oh, v.eta);
+  const float vndf = v.g1OverCosWo * oh * d;  // D_wo(h), Heitz 2018 eq. 1
+  const float jacobian = -ih / denom2;
+  const float g1i = ggxG1OverCos(-wi, v.alpha);
+  const glm::vec3 f = v.tint * (t * vndf * g1i * jacobian / (v.eta * v.eta));
+  return {f, (1.0f - v.reflectProbability) * vndf * jacobian};
+}
+
+LobeEval glassLobe(const BsdfVertex& v, const glm::vec3& wi) {
+  if (wi.z > 0.0f) return glassReflection(v, wi);
+  if (!(wi.z < 0.0f)) return {};
+  return v.thinWalled ? glassThinTransmission(v, wi) : glassRefraction(v, wi);
+}
+
+// The metallic-roughness BRDF alone (weighted by brdfWeight when there is a glass lobe).
+BsdfEval evalBrdf(const BsdfVertex& v, const glm::vec3& wi) {
   glm::vec3 h;
   if (!reflectionPair(v, wi, h)) return {};
   const float d = ggxD(h, v.alpha);
   return {{diffuse(v, wi), specular(v, wi, h, d)}, pdf(v, wi, d)};
 }
 
+// A direction from the glass lobe, or none (wi = 0): VNDF normal, then reflect, mirror or
+// refract (Snell, pbrt-v4's Refract) as u.x chose.
+glm::vec3 sampleGlassDirection(const BsdfVertex& v, glm::vec2 u) {
+  const bool reflect = u.x < v.reflectProbability;
+  u.x = remapLobeNumber(u.x, v.reflectProbability, reflect);
+  const glm::vec3 h = sampleGgxVndf(v.wo, v.alpha, u);
+  const float oh = glm::dot(v.wo, h);
+  const glm::vec3 r = 2.0f * oh * h - v.wo;
+  // A half's direction on the other half's side is no sample: the pdf would count it there.
+  if (reflect || v.thinWalled) {
+    if (!(r.z > 0.0f)) return glm::vec3(0.0f);
+    return reflect ? r : glm::vec3(r.x, r.y, -r.z);
+  }
+  const float sin2T = (1.0f - oh * oh) / (v.eta * v.eta);
+  if (!(sin2T < 1.0f)) return glm::vec3(0.0f);  // total internal reflection at this facet
+  const float cosT = safeSqrt(1.0f - sin2T);
+  const glm::vec3 t = -v.wo / v.eta + (oh / v.eta - cosT) * h;
+  return t.z < 0.0f ? t : glm::vec3(0.0f);
+}
+
+glm::vec3 sampleBrdfDirection(const BsdfVertex& v, glm::vec2 u, bool& specularLobe) {
+  specularLobe = u.x < v.specularProbability;
+  u.x = remapLobeNumber(u.x, v.specularProbability, specularLobe);
+  if (!specularLobe) return sampleCosineHemisphere(u);
+  const glm::vec3 h = sampleGgxVndf(v.wo, v.alpha, u);
+  return 2.0f * glm::dot(v.wo, h) * h - v.wo;
+}
+
+// The glass lobe's share and probabilities; the BRDF's metallic re-weighted so the metal
+// keeps its share (bsdf.h, "The glass lobe").
+void prepareGlass(const BsdfParams& p, float metallic, BsdfVertex& v, float& brdfMetallic) {
+  const float transmission =
+      isFinite(p.transmission) ? std::clamp(p.transmission, 0.0f, 1.0f) : 0.0f;
+  v.glass = (1.0f - metallic) * transmission;
+  brdfMetallic = metallic;
+  if (!(v.glass > 0.0f)) {
+    v.glass = 0.0f;
+    return;
+  }
+  v.brdfWeight = 1.0f - v.glass;
+  brdfMetallic = v.brdfWeight > 0.0f ? std::min(1.0f, metallic / v.brdfWeight) : 0.0f;
+  v.eta = isFinite(p.eta) ? std::clamp(p.eta, 1e-3f, 1e3f) : 1.5f;
+  v.thinWalled = p.thinWalled;
+  const float fr = fresnelDielectric(v.wo.z, v.eta);
+  v.reflectProbability = std::clamp(fr, kMinGlassHalfProbability, 1.0f - kMinGlassHalfProbability);
+}
+
+}  // namespace
+
+BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
+  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN).
+  const glm::vec3 base =
+      glm::clamp(glm::vec3(isFinite(p.baseColor) ? p.baseColor : glm::vec3(0.0f)), 0.0f, 1.0f);
+  const float metallic0 = isFinite(p.metallic) ? std::clamp(p.metallic, 0.0f, 1.0f) : 0.0f;
+  const glm::vec3 df0 = glm::clamp(
+      glm::vec3(isFinite(p.dielectricF0) ? p.dielectricF0 : glm::vec3(0.0f)), 0.0f, 1.0f);
+  const float df90 = isFinite(p.dielectricF90) ? std::clamp(p.dielectricF90, 0.0f, 1.0f) : 0.0f;
+  BsdfVertex v;
+  v.wo = wo;
+  v.alpha = roughnessToAlpha(p.roughness);
+  v.tint = base;
+  float metallic;
+  prepareGlass(p, metallic0, v, metallic);
+  v.f0 = glm::mix(df0, base, metallic);
+  // df90 + (1 - df90) metallic, not glm::mix: exactly 1 for the core model's df90 = 1.
+  v.f90 = df90 + (1.0f - df90) * metallic;
+  v.diffuse = (1.0f - metallic) * base;
+  v.fresnelWo = fresnelSchlick(v.f0, v.f90, wo.z);
+  v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);
+  v.specularProbability = specularProbability(v.fresnelWo, v.diffuse);
+  if (v.glass > 0.0f) {
+    // Lobe weights as in specularProbability: the BRDF's estimate lum(F) + lum((1 - F)
+    // diffuse), the glass lobe's F + (1 - F) lum(tint), both at the macro-surface.
+    const float fr = fresnelDielectric(wo.z, v.eta);
+    const float brdf =
+        luminance(v.fresnelWo) + luminance((glm::vec3(1.0f) - v.fresnelWo) * v.diffuse);
+    const float glass = fr + (1.0f - fr) * luminance(v.tint);
+    const float wg = v.glass * glass, wb = v.brdfWeight * brdf;
+    v.glassProbability = wg + wb > 0.0f ? wg / (wg + wb) : 1.0f;
+    if (!(v.brdfWeight > 0.0f)) v.glassProbability = 1.0f;
+  }
+  return v;
+}
+
+BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
+  if (v.glass == 0.0f) return evalBrdf(v, wi);
+  if (!(v.wo.z > 0.0f)) return {};
+  BsdfEval e = evalBrdf(v, wi);
+  e.f.diffuse *= v.brdfWeight;
+  e.f.specular *= v.brdfWeight;
+  e.pdf *= 1.0f - v.glassProbability;
+  const LobeEval g = glassLobe(v, wi);
+  e.f.specular += v.glass * g.f;
+  e.pdf += v.glassProbability * g.pdf;
+  return e;
+}
+
 BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
-  s.specularLobe = u.x < v.specularProbability;
-  u.x = remapLobeNumber(u.x, v.specularProbability, s.specularLobe);
-  if (s.specularLobe) {
-    const glm::vec3 h = sampleGgxVndf(v.wo, v.alpha, u);
-    s.wi = 2.0f * glm::dot(v.wo, h) * h - v.wo;
+  if (v.glass > 0.0f && u.x < v.glassProbability) {
+    u.x = remapLobeNumber(u.x, v.glassProbability, true);
+    s.wi = sampleGlassDirection(v, u);
+    s.specularLobe = true;
   } else {
-    s.wi = sampleCosineHemisphere(u);
+    if (v.glass > 0.0f) u.x = remapLobeNumber(u.x, v.glassProbability, false);
+    s.wi = sampleBrdfDirection(v, u, s.specularLobe);
+    // A reflection below the surface is no sample (the glass lobe's pdf would count it).
+    if (v.glass > 0.0f && !(s.wi.z > 0.0f)) return {};
   }
   // The pdf is recomputed from wi rather than carried from the lobe's sampler, so a
   // sample's pdf is exactly what pdfBsdf() later says about the same direction (MIS).
-  glm::vec3 h;
-  if (!reflectionPair(v, s.wi, h)) return {};
-  const float d = ggxD(h, v.alpha);
-  s.pdf = pdf(v, s.wi, d);
-  if (!(s.pdf > 0.0f) || !isFinite(s.pdf)) return {};
-  s.fDiffuse = diffuse(v, s.wi);
-  s.f = specular(v, s.wi, h, d) + s.fDiffuse;
-  s.weight = s.f * (s.wi.z / s.pdf);
+  if (v.glass == 0.0f) {
+    glm::vec3 h;
+    if (!reflectionPair(v, s.wi, h)) return {};
+    const float d = ggxD(h, v.alpha);
+    s.pdf = pdf(v, s.wi, d);
+    if (!(s.pdf > 0.0f) || !isFinite(s.pdf)) return {};
+    s.fDiffuse = diffuse(v, s.wi);
+    s.f = specular(v, s.wi, h, d) + s.fDiffuse;
+    s.weight = s.f * (s.wi.z / s.pdf);
+    return s;
+  }
+  const BsdfEval e = evalBsdfAndPdf(v, s.wi);
+  if (!(e.pdf > 0.0f) || !isFinite(e.pdf)) return {};
+  s.pdf = e.pdf;
+  s.fDiffuse = e.f.diffuse;
+  s.f = e.f.total();
+  s.weight = s.f * (std::abs(s.wi.z) / s.pdf);
   return s;
 }
 

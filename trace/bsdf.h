@@ -4,8 +4,9 @@
 //
 // Every function works in the local shading frame, z = the shading normal, with unit
 // directions pointing away from the surface (wo towards the viewer, wi towards the light).
-// It is a BRDF: reflection only, zero unless wo.z > 0 and wi.z > 0. The caller flips or
-// bends back-facing shading normals before calling. Nothing here returns NaN or Inf, for
+// wo.z > 0 always (zero otherwise): the caller flips back-facing shading normals towards
+// the viewer. Reflection has wi.z > 0; only the glass lobe (transmission > 0) gives
+// wi.z < 0, through the surface. Nothing here returns NaN or Inf, for
 // any input (tests/trace/bsdf_test.cpp, "Finite*").
 #pragma once
 
@@ -38,6 +39,17 @@ struct BsdfParams {
   glm::vec3 baseColor{1.0f};  // linear, in [0,1]
   float metallic = 0.0f;      // in [0,1]
   float roughness = 1.0f;     // glTF perceptual roughness in [0,1]
+  // The dielectric layer's Schlick Fresnel at normal and at grazing incidence, glTF's
+  // dielectric_f0 = min(F0(ior) specularColor, 1) specular and dielectric_f90 = specular
+  // (KHR_materials_ior, KHR_materials_specular); core glTF: 0.04 and 1.
+  glm::vec3 dielectricF0{kDielectricF0};
+  float dielectricF90 = 1.0f;
+  // KHR_materials_transmission, in [0,1]: see "The glass lobe" below.
+  float transmission = 0.0f;
+  // The glass lobe's relative index: the far side's over the near (wo's) side's, ior when
+  // entering a volume from outside, 1 / ior when leaving it; ior on a thin wall.
+  float eta = 1.5f;
+  bool thinWalled = true;  // no KHR_materials_volume: transmission does not bend
 };
 
 // GGX alpha from glTF perceptual roughness (glTF 2.0 Appendix B: alpha = roughness^2),
@@ -68,6 +80,14 @@ float ggxG1OverCos(const glm::vec3& w, float alpha);
 // Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", CGF 13(3), 1994,
 // eq. 15: F = F0 + (1 - F0)(1 - cos)^5, cos clamped to [0,1].
 glm::vec3 fresnelSchlick(const glm::vec3& f0, float cosTheta);
+// With a reflectance f90 at grazing incidence in place of 1, as glTF's fresnel_mix:
+// F = f0 + (f90 - f0)(1 - cos)^5. Bit-identical to the above for f90 = 1.
+glm::vec3 fresnelSchlick(const glm::vec3& f0, float f90, float cosTheta);
+
+// The exact Fresnel reflectance of unpolarised light at a smooth dielectric interface
+// (pbrt-v4 eq. 9.5): cosThetaI on the incident side, eta = n_far / n_near. 1 under total
+// internal reflection, 0 for eta = 1.
+float fresnelDielectric(float cosThetaI, float eta);
 
 // Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), 2018, listing 1
 // (isotropic): a microfacet normal h distributed as D_wo(h) below. Requires wo.z > 0.
@@ -77,7 +97,25 @@ glm::vec3 sampleGgxVndf(const glm::vec3& wo, float alpha, glm::vec2 u);
 // D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z, a density over h in solid angle.
 float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha);
 
-// --- The BRDF. -------------------------------------------------------------------------
+// --- The BSDF. -------------------------------------------------------------------------
+//
+// The glass lobe (KHR_materials_transmission): a share g = (1 - metallic) transmission of
+// the BSDF is a rough dielectric interface (Walter, Marschner, Li, Torrance, "Microfacet
+// Models for Refraction through Rough Surfaces", EGSR 2007) with the exact Fresnel
+// reflectance F = fresnelDielectric(wo.h, eta) in place of Schlick's:
+//   reflection   F D G / (4 |n.l||n.v|)                                        wi.z > 0
+//   refraction   baseColor (1 - F) D G |wi.h||wo.h| / (|n.l||n.v| (wi.h + wo.h/eta)^2 eta^2)
+//                (Walter eq. 21 in pbrt-v4's form, radiance transport: the 1/eta^2 makes
+//                radiance entering and leaving a medium cancel)                  wi.z < 0
+//   thin wall    baseColor (1 - F) D G / (4 |n.l||n.v|) at wi mirrored through the
+//                surface: light passes unbent, spread by the roughness (glTF's thin-walled
+//                transmission)                                                   wi.z < 0
+// with G = G1(wo) G1(wi) on |cos|, and the rest of the BSDF, the metallic-roughness BRDF
+// below with metallic' = metallic / (1 - g), weighted by 1 - g: so the metal keeps its
+// share 'metallic' and the BTDF replaces the dielectric's diffuse lobe in proportion to
+// transmission, as glTF's layering has it. The glass lobe ignores dielectricF0/F90: with
+// Schlick, R + T at an interface would not sum to 1 where total internal reflection is, and
+// a glass sphere in a white furnace would darken. g = 0 is the BRDF below to the bit.
 
 // Evaluation convention: f alone, without the cosine; the caller multiplies by |wi.z|
 // (as pbrt's BxDF::f). Reciprocal: evalBsdf(p, a, b) == evalBsdf(p, b, a).
@@ -150,10 +188,20 @@ struct BsdfVertex {
   glm::vec3 wo{0.0f, 0.0f, 1.0f};
   float alpha = kMinAlpha;
   glm::vec3 f0{kDielectricF0};
-  glm::vec3 diffuse{0.0f};    // (1 - metallic) baseColor, the Lambert albedo before Fresnel
-  glm::vec3 fresnelWo{0.0f};  // fresnelSchlick(f0, wo.z)
-  float g1OverCosWo = 0.0f;   // ggxG1OverCos(wo, alpha)
-  float specularProbability = 1.0f;
+  glm::vec3 diffuse{0.0f};  // (1 - metallic) baseColor, the Lambert albedo before Fresnel
+  float f90 = 1.0f;
+  glm::vec3 fresnelWo{0.0f};         // fresnelSchlick(f0, f90, wo.z)
+  float g1OverCosWo = 0.0f;          // ggxG1OverCos(wo, alpha)
+  float specularProbability = 1.0f;  // within the BRDF
+  // The glass lobe: its share g, its selection probability, and within it the probability
+  // of reflecting (Fresnel at the macro-surface, clamped so both halves get samples).
+  float glass = 0.0f;
+  float brdfWeight = 1.0f;  // 1 - g
+  float glassProbability = 0.0f;
+  float reflectProbability = 1.0f;
+  float eta = 1.5f;
+  glm::vec3 tint{1.0f};  // baseColor, the transmitted light's filter
+  bool thinWalled = true;
 };
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo);
 

@@ -113,7 +113,7 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
   std::copy(mesh.indices.begin(), mesh.indices.end(), i);
   const Material& mat = scene.materials[mesh.material];
   FilterData& d = filterData[index];
-  d = {&scene, &mesh, &mat, mat.alphaMode == AlphaMode::Mask, !mat.doubleSided};
+  d = {&scene, &mesh, &mat, mat.alphaMode == AlphaMode::Mask, mat.cullsBackFaces()};
   if (d.alphaMask || d.cullBackFaces || filterAlways) {
     ++stats.filteredMeshes;
     rtcSetGeometryUserData(g, &d);

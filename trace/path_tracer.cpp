@@ -19,6 +19,20 @@ constexpr float kShadowRayShorten = 1e-4f;
 // denoiser wants the albedo of what the mirror shows; thesis §3.3.3).
 constexpr float kMirrorRoughness = 0.1f;
 
+// Whether world direction 'wi' (wiLocal in the shading frame) leaves on the side of the
+// geometry that the shading frame says: above it for reflection, below for transmission. A
+// shading normal bent away from the geometric one (normal maps, interpolated normals) can
+// otherwise send a reflected ray into the surface, or light through an opaque one.
+bool sameSide(const glm::vec3& wi, const SurfaceHit& hit, const glm::vec3& wiLocal) {
+  const float side = glm::dot(wi, hit.geometricNormal);
+  return wiLocal.z > 0.0f ? side > 0.0f : side < 0.0f && wiLocal.z < 0.0f;
+}
+
+// A mirror or smooth glass: the albedo AOV takes what it shows (thesis sec. 3.3.3).
+bool showsWhatIsBeyond(const BsdfParams& b) {
+  return b.roughness < kMirrorRoughness && (b.metallic >= 1.0f || b.transmission > 0.0f);
+}
+
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
 // lights with area (Veach 1997 sec. 9.2, power heuristic): the shadow ray and what it adds
 // unblocked, weighted by the throughput and lobe split as they are at this vertex.
@@ -27,8 +41,9 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   if (ctx.lights.empty()) return false;
   const float uSelect = sampler.next();
   const LightSample ls = ctx.lights.sample(p.hit.position, uSelect, sampler.next2());
-  if (!ls.valid() || glm::dot(ls.direction, p.hit.geometricNormal) <= 0.0f) return false;
+  if (!ls.valid()) return false;
   const glm::vec3 wiL = frame.toLocal(ls.direction);
+  if (!sameSide(ls.direction, p.hit, wiL)) return false;
   const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
   const BsdfLobes& f = e.f;
   if (f.total() == glm::vec3(0.0f)) return false;
@@ -136,6 +151,17 @@ void recordSecondVertex(const TraceContext& ctx, PathState& p, const PathResult&
   p.before0 = result.diffuse + result.specular;
 }
 
+// Beer-Lambert along a segment inside a volume (KHR_materials_volume): a ray that reaches
+// the back face of a volume's mesh travelled through its medium. Media nested in media are
+// approximated by the innermost one.
+void absorbAlong(const Scene& scene, const TraceHit& th, const SurfaceHit& next, glm::vec3& beta) {
+  if (next.frontFace) return;
+  const Material& m = scene.materials[scene.meshes[scene.instances[th.instance].mesh].material];
+  if (m.thinWalled()) return;
+  const glm::vec3 sigma = m.absorption();
+  if (sigma != glm::vec3(0.0f)) beta *= glm::exp(-sigma * th.t);
+}
+
 }  // namespace
 
 PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
@@ -159,7 +185,7 @@ PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCoun
 VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result, ShadowRay& shadow,
                        BatchRay& bounce) {
   Sampler sampler = p.sampler.bounce(p.depth);
-  if (!p.albedoSet && (p.hit.bsdf.roughness >= kMirrorRoughness || p.hit.bsdf.metallic < 1.0f)) {
+  if (!p.albedoSet && !showsWhatIsBeyond(p.hit.bsdf)) {
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
   }
@@ -175,7 +201,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
   const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
-  if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return rays;  // shading normal leaked below
+  if (!sameSide(wi, p.hit, bs.wi)) return rays;
   if (p.depth == 0) p.share = diffuseShare(bs);
   if (p.depth == 0 && p.record) {
     p.record->sampled = true;
@@ -214,6 +240,7 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
     next = p.last ? surfaceEmissionAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi)
                   : surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi);
   }
+  if (th.hit) absorbAlong(ctx.scene, th, next, p.beta);
   addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
            p.share);
   if (p.depth == 0 && p.record) recordSecondVertex(ctx, p, result, th, next);

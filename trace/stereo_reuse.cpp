@@ -28,6 +28,9 @@ namespace {
 // The lobe test of kReuseMinRoughness: alpha against the angle between the views.
 bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3& toRight) {
   if (hit.bsdf.roughness < kReuseMinRoughness) return false;
+  // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
+  // between the eyes by its own parallax, not the glass surface's.
+  if (hit.bsdf.transmission > 0.0f) return false;
   const float c = glm::dot(glm::normalize(toLeft), glm::normalize(toRight));
   return roughnessToAlpha(hit.bsdf.roughness) >= std::acos(std::min(1.0f, c));
 }

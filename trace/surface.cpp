@@ -83,6 +83,21 @@ BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolate
   p.baseColor = glm::clamp(glm::vec3(base), 0.0f, 1.0f);
   p.metallic = glm::clamp(mat.metallicFactor * mr.b, 0.0f, 1.0f);
   p.roughness = glm::clamp(mat.roughnessFactor * mr.g, 0.0f, 1.0f);
+  // KHR_materials_specular's textures: strength in A, tint in sRGB RGB.
+  const float strength =
+      mat.specularFactor *
+      sampleSlot(scene, mat.specularTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).a;
+  const glm::vec3 tint =
+      mat.specularColorFactor *
+      glm::vec3(sampleSlot(scene, mat.specularColorTexture, in.uv0, in.uv1, true, glm::vec4(1.0f)));
+  p.dielectricF0 = glm::min(mat.iorF0() * tint, glm::vec3(1.0f)) * strength;
+  p.dielectricF90 = strength;
+  if (mat.transmissionFactor > 0.0f)
+    p.transmission =
+        mat.transmissionFactor *
+        sampleSlot(scene, mat.transmissionTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).r;
+  p.thinWalled = mat.thinWalled();
+  p.eta = mat.ior;
   return p;
 }
 
@@ -135,6 +150,8 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   if (glm::dot(ns, h.geometricNormal) < 0.0f) ns = -ns;
   h.shadingNormal = ns;
   h.bsdf = materialAt(scene, mat, in);
+  // A volume's interface: entering from the front, leaving from the back.
+  if (!h.bsdf.thinWalled && !h.frontFace && h.bsdf.eta > 0.0f) h.bsdf.eta = 1.0f / h.bsdf.eta;
   h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);
   return h;
 }

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/gltf_writer.h"
 #include "core/image_io.h"
+#include "core/scene_info.h"
 
 namespace photovr {
 namespace {
@@ -731,6 +732,79 @@ TEST(GltfLoaderErrors, NoMeshes) {
       replaced(triangleGltf(), R"({"mesh":0,"name":"tri"})", R"({"name":"empty"})");
   EXPECT_NE(loadError(writeGltf("nomesh.gltf", json)).find("contains no triangle meshes"),
             std::string::npos);
+}
+
+// A triangle whose one material carries the given "extensions" object.
+std::string materialExtensionsGltf(const std::string& extensions) {
+  std::string json = replaced(triangleGltf(), R"("indices":1})", R"("indices":1,"material":0})");
+  return replaced(json, R"("buffers":)",
+                  R"("materials":[{"name":"m","extensions":)" + extensions + R"(}],"buffers":)");
+}
+
+TEST(GltfLoader, DielectricExtensionsReachTheMaterial) {
+  const std::string json = materialExtensionsGltf(R"({
+"KHR_materials_ior":{"ior":1.33},
+"KHR_materials_specular":{"specularFactor":0.5,"specularColorFactor":[1,0.5,0.25]},
+"KHR_materials_transmission":{"transmissionFactor":0.75},
+"KHR_materials_volume":{"thicknessFactor":0.1,"attenuationDistance":2,
+                        "attenuationColor":[0.5,1,0.25]}})");
+  const Scene scene = loadGltf(writeGltf("dielectric.gltf", json));
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  EXPECT_FLOAT_EQ(m.ior, 1.33f);
+  EXPECT_FLOAT_EQ(m.specularFactor, 0.5f);
+  EXPECT_EQ(m.specularColorFactor, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(m.transmissionFactor, 0.75f);
+  EXPECT_FALSE(m.thinWalled());
+  EXPECT_FALSE(m.cullsBackFaces());  // a volume's back faces are where light leaves
+  // Beer-Lambert: exp(-sigma d) reaches the attenuation colour at d = attenuationDistance.
+  const glm::vec3 sigma = m.absorption();
+  EXPECT_NEAR(std::exp(-sigma.r * 2.0f), 0.5f, 1e-6f);
+  EXPECT_EQ(sigma.g, 0.0f);
+  EXPECT_NEAR(std::exp(-sigma.b * 2.0f), 0.25f, 1e-6f);
+  EXPECT_NEAR(m.iorF0(), std::pow(0.33 / 2.33, 2.0), 1e-7);
+  for (const std::string& w : scene.warnings)
+    EXPECT_EQ(w.find("unsupported"), std::string::npos) << w;
+}
+
+TEST(GltfLoader, CoreIorGivesExactlyTheCoreF0) {
+  // The default ior 1.5 must give the float 0.04 the core model used, so that scenes
+  // without the extension render bit-identically to before it was read.
+  EXPECT_EQ(Material{}.iorF0(), 0.04f);
+}
+
+TEST(GltfLoader, DielectricExtensionsOutOfRangeAreErrors) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"KHR_materials_ior":{"ior":0.5}})", "ior must be 0 or in [1, 10]"},
+      {R"({"KHR_materials_specular":{"specularFactor":2}})", "KHR_materials_specular factor"},
+      {R"({"KHR_materials_transmission":{"transmissionFactor":-1}})",
+       "KHR_materials_transmission factor"},
+      {R"({"KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":-3}})",
+       "KHR_materials_volume"},
+      {R"({"KHR_materials_ior":{"ior":"glass"}})", "ior"}};
+  for (const auto& [extensions, message] : cases) {
+    const std::string error =
+        loadError(writeGltf("bad_dielectric.gltf", materialExtensionsGltf(extensions)));
+    EXPECT_NE(error.find(message), std::string::npos) << extensions << ": " << error;
+  }
+}
+
+TEST(GltfLoader, VolumeThicknessTextureIsAWarning) {
+  const Scene scene = loadGltf(writeGltf(
+      "thickness.gltf", materialExtensionsGltf(R"({"KHR_materials_volume":{"thicknessFactor":1,
+"thicknessTexture":{"index":0}}})")));
+  EXPECT_TRUE(anyContains(scene.warnings, "material 'm'", "thicknessTexture is not used"));
+}
+
+TEST(GltfLoader, InfoListsEachExtensionReadOrIgnored) {
+  std::string json = materialExtensionsGltf(R"({"KHR_materials_ior":{"ior":1.4}})");
+  json = replaced(json, R"("scene":0,)",
+                  R"("extensionsUsed":["KHR_materials_ior","KHR_materials_sheen"],"scene":0,)");
+  const Scene scene = loadGltf(writeGltf("extensions.gltf", json));
+  const std::string info = describeScene(scene);
+  EXPECT_NE(info.find("extensions: KHR_materials_ior (read) KHR_materials_sheen (ignored)"),
+            std::string::npos)
+      << info;
 }
 
 }  // namespace

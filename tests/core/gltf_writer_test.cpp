@@ -61,6 +61,16 @@ Material texturedMaterial() {
   m.normalTexture = {0, 0, {}};
   m.occlusionTexture = {0, 0, {}};
   m.emissiveTexture = {0, 0, {}};
+  m.ior = 1.33f;
+  m.specularFactor = 0.5f;
+  m.specularColorFactor = {1.0f, 0.5f, 2.0f};
+  m.specularTexture = {0, 0, {}};
+  m.specularColorTexture = {0, 1, {{0.5f, 0.0f}, 0.0f, {1.0f, 2.0f}}};
+  m.transmissionFactor = 0.25f;
+  m.transmissionTexture = {0, 0, {}};
+  m.thicknessFactor = 0.1f;
+  m.attenuationColor = {0.5f, 0.75f, 1.0f};
+  m.attenuationDistance = 3.0f;
   return m;
 }
 
@@ -149,11 +159,22 @@ void expectSameMaterial(const Material& a, const Material& b) {
   EXPECT_EQ(a.alphaMode, b.alphaMode);
   EXPECT_EQ(a.alphaCutoff, b.alphaCutoff);
   EXPECT_EQ(a.doubleSided, b.doubleSided);
-  const TextureRef* ra[] = {&a.baseColorTexture, &a.metallicRoughnessTexture, &a.normalTexture,
-                            &a.occlusionTexture, &a.emissiveTexture};
-  const TextureRef* rb[] = {&b.baseColorTexture, &b.metallicRoughnessTexture, &b.normalTexture,
-                            &b.occlusionTexture, &b.emissiveTexture};
-  for (int i = 0; i < 5; ++i) {
+  EXPECT_EQ(a.ior, b.ior);
+  EXPECT_EQ(a.specularFactor, b.specularFactor);
+  EXPECT_EQ(a.specularColorFactor, b.specularColorFactor);
+  EXPECT_EQ(a.transmissionFactor, b.transmissionFactor);
+  EXPECT_EQ(a.thicknessFactor, b.thicknessFactor);
+  EXPECT_EQ(a.attenuationColor, b.attenuationColor);
+  EXPECT_EQ(a.attenuationDistance, b.attenuationDistance);
+  const TextureRef* ra[] = {&a.baseColorTexture,     &a.metallicRoughnessTexture,
+                            &a.normalTexture,        &a.occlusionTexture,
+                            &a.emissiveTexture,      &a.specularTexture,
+                            &a.specularColorTexture, &a.transmissionTexture};
+  const TextureRef* rb[] = {&b.baseColorTexture,     &b.metallicRoughnessTexture,
+                            &b.normalTexture,        &b.occlusionTexture,
+                            &b.emissiveTexture,      &b.specularTexture,
+                            &b.specularColorTexture, &b.transmissionTexture};
+  for (int i = 0; i < 8; ++i) {
     EXPECT_EQ(ra[i]->texture, rb[i]->texture) << i;
     EXPECT_EQ(ra[i]->texCoord, rb[i]->texCoord) << i;
     EXPECT_EQ(ra[i]->transform.offset, rb[i]->transform.offset) << i;
