@@ -28,6 +28,7 @@
 #include "core/view.h"
 #include "bench/bench_cli.h"
 #include "core/builtin_scenes.h"
+#include "core/gltf_loader.h"
 #include "core/huge_pages.h"
 #include "core/error.h"
 #include "core/error_metrics.h"
@@ -54,8 +55,15 @@ struct Setup {
   Scene scene;
   View view;
 };
+// A built-in scene by name, or a .gltf/.glb file (issue 22's glass scenes).
+Scene sceneOf(const std::string& name) {
+  const std::string ext = std::filesystem::path(name).extension().string();
+  if (ext == ".gltf" || ext == ".glb") return loadGltf(name);
+  return makeBuiltinScene(builtinSceneArgument(name));
+}
+
 Setup setupScene(const std::string& name) {
-  Setup s{makeBuiltinScene(name), {}};
+  Setup s{sceneOf(name), {}};
   s.view = resolveView(s.scene, Options({}, {}, {}));
   s.view.head = recenterOnView(s.scene, s.view.head);
   return s;
@@ -201,10 +209,10 @@ void benchEqualTime(const Args& a, std::ofstream& csv) {
 
 const char* const kUsage =
     "usage: photovr_bench_denoise [--out DIR] [--repeats N] [--eq-width W] [--eq-height H]\n"
-    "                             [--reference-spp N] [--scenes NAME] [--skip-passes]\n"
+    "                             [--reference-spp N] [--scenes NAME|FILE] [--skip-passes]\n"
     "The denoiser's per-pass time for both eyes at 960x1080 and 480x540 (mean of --repeats\n"
     "steady-state frames, 2), and its worth at equal time against an undenoised frame with\n"
-    "more spp at W x H (240x270) on every built-in scene or --scenes NAME, scored against a\n"
+    "more spp at W x H (240x270) on every built-in scene or --scenes NAME|FILE, scored against a\n"
     "cached --reference-spp (256) reference. Writes bench_denoise_*.csv to --out (out/bench).\n";
 
 Args parse(const Options& o) {
@@ -214,7 +222,7 @@ Args parse(const Options& o) {
   a.eqWidth = o.integer("--eq-width", a.eqWidth, 8, 4096);
   a.eqHeight = o.integer("--eq-height", a.eqHeight, 8, 4096);
   a.referenceSpp = o.integer("--reference-spp", a.referenceSpp, 1, 1 << 20);
-  if (o.has("--scenes")) a.scenes = {builtinSceneArgument(o.text("--scenes", ""))};
+  if (o.has("--scenes")) a.scenes = {o.text("--scenes", "")};
   a.skipPasses = o.has("--skip-passes");
   return a;
 }
