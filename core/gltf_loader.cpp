@@ -694,10 +694,7 @@ void convertDielectric(Loader& ld, const tg::Material& gm, Material& m, const st
 
 AlphaMode alphaMode(Loader& ld, const tg::Material& gm, const std::string& where) {
   if (gm.alphaMode == "MASK") return AlphaMode::Mask;
-  if (gm.alphaMode == "BLEND") {
-    ld.warn(where + ": alphaMode BLEND is rendered as opaque");
-    return AlphaMode::Blend;
-  }
+  if (gm.alphaMode == "BLEND") return AlphaMode::Blend;  // stochastic coverage
   if (gm.alphaMode != "OPAQUE") ld.warn(where + ": unknown alphaMode '" + gm.alphaMode + "'");
   return AlphaMode::Opaque;
 }

@@ -193,10 +193,10 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
                         : std::string("none (misses are black)"))
       << "\n";
   out << "  alpha mask: " << (f.alphaMask ? "yes (any-hit filter)" : "no") << "\n";
-  if (f.alphaBlend) out << "  alpha blend: yes\n";
+  if (f.alphaBlend) out << "  alpha blend: stochastic coverage (any-hit filter, G-buffer hash)\n";
   out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
   out << "  any-hit filter: " << count(f.filteredMeshes) << " of " << count(scene.meshes.size())
-      << " meshes (MASK or single-sided; the rest have none)\n";
+      << " meshes (MASK, BLEND or single-sided; the rest have none)\n";
   out << "  BVH refit: never (static scene: photovr plays no animation)\n";
   out << "  sky pixels: "
       << (f.environment ? "environment looked up, not traced (hybrid)"
@@ -231,7 +231,7 @@ SceneFeatures analyzeScene(const Scene& scene) {
   f.areaLights = f.emissiveTriangles > 0;
   for (const Mesh& mesh : scene.meshes)  // as trace/embree_scene.cpp installs the filter
     if (const Material* m = materialOf(scene, mesh))
-      f.filteredMeshes += m->alphaMode == AlphaMode::Mask || m->cullsBackFaces();
+      f.filteredMeshes += m->alphaMode != AlphaMode::Opaque || m->cullsBackFaces();
   f.environment = environmentEmits(scene.environment);
   size_t unused = 0;
   for (const bool u : used) unused += u ? 0 : 1;

@@ -146,8 +146,10 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
     g.emissive = glm::vec4(mat.emission(), mat.alphaCutoff);
     g.params =
         glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normalScale, mat.occlusionStrength);
-    g.flags = glm::uvec4(mat.alphaMode == AlphaMode::Mask ? ALPHA_MASK : ALPHA_OPAQUE,
-                         mat.cullsBackFaces() ? 0u : 1u, 0u, 0u);
+    const unsigned alpha = mat.alphaMode == AlphaMode::Mask    ? ALPHA_MASK
+                           : mat.alphaMode == AlphaMode::Blend ? ALPHA_BLEND
+                                                               : ALPHA_OPAQUE;
+    g.flags = glm::uvec4(alpha, mat.cullsBackFaces() ? 0u : 1u, 0u, 0u);
     const TextureRef* refs[SLOT_COUNT] = {&mat.baseColorTexture, &mat.metallicRoughnessTexture,
                                           &mat.normalTexture, &mat.occlusionTexture,
                                           &mat.emissiveTexture};

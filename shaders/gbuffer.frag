@@ -80,6 +80,25 @@ vec3 shadingNormal(GpuMaterial mat, bool frontFacing) {
   return frontFacing ? n : -n;
 }
 
+// trace/rng.h's pcgHash and hashCombine (Jarzynski & Olano 2020), for alpha BLEND's
+// stochastic coverage: a number in [0, 1) per fragment and frame from the pixel, the
+// frame's jitter (which changes every frame), the eye and the triangle.
+uint pcgHash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+uint hashCombine(uint seed, uint v) { return pcgHash(v + pcgHash(seed)); }
+
+float coverageNumber(uint instance, uint triangle) {
+  uint h = hashCombine(pcgHash(uint(gl_FragCoord.x)), uint(gl_FragCoord.y));
+  h = hashCombine(h, floatBitsToUint(frame.jitter[vEye].x));
+  h = hashCombine(h, floatBitsToUint(frame.jitter[vEye].y));
+  h = hashCombine(hashCombine(hashCombine(h, vEye), instance), triangle);
+  return float(h >> 8u) * (1.0 / 16777216.0);
+}
+
 vec2 motionVector() {
   vec2 current = vClip.xy / vClip.w;
   vec2 previous = vPreviousClip.xy / vPreviousClip.w;
@@ -93,6 +112,10 @@ void main() {
   if (!front && mat.flags.y == 0u) discard;  // single-sided: cull back faces
   vec4 base = mat.baseColorFactor * SAMPLE_SLOT(mat, SLOT_BASE_COLOR, uBaseColor, vec4(1.0));
   if (mat.flags.x == ALPHA_MASK && base.a < mat.emissive.w) discard;
+  // BLEND: the surface covers the pixel with probability alpha, as the tracer's rays meet
+  // it (trace/embree_scene.cpp); averaged over frames, alpha-weighted as blending is.
+  if (mat.flags.x == ALPHA_BLEND && coverageNumber(inst.info.x, uint(gl_PrimitiveID)) >= base.a)
+    discard;
   vec4 mr = SAMPLE_SLOT(mat, SLOT_METALLIC_ROUGHNESS, uMetallicRoughness, vec4(1.0));
   float occlusion = SAMPLE_SLOT(mat, SLOT_OCCLUSION, uOcclusion, vec4(1.0)).r;
   uint triangle = uint(gl_PrimitiveID);

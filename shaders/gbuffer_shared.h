@@ -25,6 +25,7 @@ using mat4 = glm::mat4;
 
 #define ALPHA_OPAQUE 0u
 #define ALPHA_MASK 1u
+#define ALPHA_BLEND 2u  // stochastic coverage: covers with probability alpha
 
 // Background pixels carry this instance id in the visibility record.
 #define VISIBILITY_NONE 0xFFFFFFFFu

@@ -10,10 +10,12 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
+#include "trace/rng.h"
 #include "trace/texture_sampling.h"
 
 namespace photovr {
@@ -36,6 +38,7 @@ struct FilterData {
   const Mesh* mesh = nullptr;
   const Material* material = nullptr;
   bool alphaMask = false;      // MASK material: reject hits below the alpha cutoff
+  bool alphaBlend = false;     // BLEND material: accept hits with probability alpha
   bool cullBackFaces = false;  // single-sided material: back faces are invisible (glTF 3.9.5)
 };
 
@@ -49,6 +52,26 @@ float maskAlpha(const FilterData& d, uint32_t triangle, float u, float v) {
                          sampleSlot(*d.scene, d.material->baseColorTexture, lerp(d.mesh->uv0),
                                     lerp(d.mesh->uv1), true, glm::vec4(1.0f));
   return base.a;
+}
+
+uint32_t floatBits(float f) {
+  uint32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+}
+
+// alpha BLEND's coin for one ray and candidate triangle: a hash of the ray (its origin and
+// direction, different for every sample, bounce and frame, and the same at any thread
+// count) and of the triangle, so each layer a ray passes is an independent coin.
+float coverageNumber(const RTCFilterFunctionNArguments* args, unsigned i, uint32_t prim) {
+  const unsigned n = args->N;
+  uint32_t h = pcgHash(floatBits(RTCRayN_org_x(args->ray, n, i)));
+  for (float f : {RTCRayN_org_y(args->ray, n, i), RTCRayN_org_z(args->ray, n, i),
+                  RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
+                  RTCRayN_dir_z(args->ray, n, i)})
+    h = hashCombine(h, floatBits(f));
+  h = hashCombine(hashCombine(h, RTCHitN_instID(args->hit, n, i, 0)), prim);
+  return toUnitFloat(h);
 }
 
 // Any-hit filter: the tracer sees what the G-buffer sees — MASK texels below the cutoff
@@ -76,6 +99,8 @@ void visibilityFilter(const RTCFilterFunctionNArguments* args) {
     const uint32_t prim = RTCHitN_primID(args->hit, n, i);
     const float u = RTCHitN_u(args->hit, n, i), v = RTCHitN_v(args->hit, n, i);
     if (d->alphaMask && maskAlpha(*d, prim, u, v) < d->material->alphaCutoff) args->valid[i] = 0;
+    if (d->alphaBlend && coverageNumber(args, i, prim) >= maskAlpha(*d, prim, u, v))
+      args->valid[i] = 0;
   }
 }
 
@@ -113,13 +138,18 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
   std::copy(mesh.indices.begin(), mesh.indices.end(), i);
   const Material& mat = scene.materials[mesh.material];
   FilterData& d = filterData[index];
-  d = {&scene, &mesh, &mat, mat.alphaMode == AlphaMode::Mask, mat.cullsBackFaces()};
-  if (d.alphaMask || d.cullBackFaces || filterAlways) {
+  d = {&scene,
+       &mesh,
+       &mat,
+       mat.alphaMode == AlphaMode::Mask,
+       mat.alphaMode == AlphaMode::Blend,
+       mat.cullsBackFaces()};
+  if (d.alphaMask || d.alphaBlend || d.cullBackFaces || filterAlways) {
     ++stats.filteredMeshes;
     rtcSetGeometryUserData(g, &d);
     rtcSetGeometryIntersectFilterFunction(g, visibilityFilter);
     rtcSetGeometryOccludedFilterFunction(g, visibilityFilter);
-    stats.alphaFilter |= d.alphaMask;
+    stats.alphaFilter |= d.alphaMask || d.alphaBlend;
     stats.backFaceFilter |= d.cullBackFaces;
   }
   rtcCommitGeometry(g);

@@ -303,15 +303,14 @@ TEST(GltfWriter, InfiniteCameraHasNoZfar) {
   }
 }
 
-TEST(GltfWriter, BlendMaterialRoundTripsWithALoadWarning) {
+TEST(GltfWriter, BlendMaterialRoundTrips) {
   Scene s = testScene();
   s.materials[1].alphaMode = AlphaMode::Blend;
   const std::string path = (testDir() / "blend.glb").string();
   writeGlb(s, path);
   const Scene out = loadGltf(path);
   EXPECT_EQ(out.materials.at(1).alphaMode, AlphaMode::Blend);
-  ASSERT_EQ(out.warnings.size(), 1u);
-  EXPECT_NE(out.warnings[0].find("BLEND is rendered as opaque"), std::string::npos);
+  EXPECT_TRUE(out.warnings.empty());  // BLEND is rendered (stochastic coverage)
 }
 
 TEST(GltfWriter, LeavesNoTemporaryFiles) {
