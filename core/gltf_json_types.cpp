@@ -73,6 +73,7 @@ const Schema kPbr{{numbers("baseColorFactor", 4), object("baseColorTexture", kTe
                    object("metallicRoughnessTexture", kTextureInfo)}};
 const Schema kEmissiveStrength{{number("emissiveStrength")}};
 const Schema kIor{{number("ior")}};
+const Schema kUnlit{};
 const Schema kSpecular{{number("specularFactor"), numbers("specularColorFactor", 3),
                         object("specularTexture", kTextureInfo),
                         object("specularColorTexture", kTextureInfo)}};
@@ -83,7 +84,8 @@ const Schema kVolume{{number("thicknessFactor"), object("thicknessTexture", kTex
 const Schema kMaterialExtensions{
     {object("KHR_materials_emissive_strength", kEmissiveStrength),
      object("KHR_materials_ior", kIor), object("KHR_materials_specular", kSpecular),
-     object("KHR_materials_transmission", kTransmission), object("KHR_materials_volume", kVolume)}};
+     object("KHR_materials_transmission", kTransmission), object("KHR_materials_unlit", kUnlit),
+     object("KHR_materials_volume", kVolume)}};
 const Schema kMaterial{{string("name"),
                         object("pbrMetallicRoughness", kPbr),
                         object("normalTexture", kNormalTextureInfo),

@@ -37,9 +37,10 @@ constexpr size_t kMaxZeroAccessorCount = size_t(1) << 26;
 constexpr int kTextureNotLoaded = -2;
 
 const std::vector<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_transmission",      "KHR_materials_volume",
-    "KHR_texture_transform"};
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+    "KHR_materials_ior",          "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_unlit",
+    "KHR_materials_volume",       "KHR_texture_transform"};
 
 // ---------------------------------------------------------------------------------------
 // Reading and parsing the file
@@ -681,6 +682,7 @@ void convertDielectric(Loader& ld, const tg::Material& gm, Material& m, const st
     m.transmissionFactor = numberOr(*e, "transmissionFactor", 0.0f);
     m.transmissionTexture = extensionTexture(ld, *e, "transmissionTexture", where);
   }
+  m.unlit = materialExtension(gm, "KHR_materials_unlit") != nullptr;
   if (const tg::Value* e = materialExtension(gm, "KHR_materials_volume")) {
     m.thicknessFactor = numberOr(*e, "thicknessFactor", 0.0f);
     m.attenuationColor = vec3Or(*e, "attenuationColor", glm::vec3(1.0f));

@@ -10,7 +10,7 @@ namespace photovr {
 // Loads the default scene (or scene 0) of a glTF 2.0 file, flattened to world-space
 // instances: each primitive becomes one Mesh, stored once however many nodes use it.
 // Supports PBR metallic-roughness materials with textures, KHR_texture_transform,
-// KHR_materials_emissive_strength, _ior, _specular, _transmission and _volume,
+// KHR_materials_emissive_strength, _ior, _specular, _transmission, _unlit and _volume,
 // KHR_lights_punctual and perspective cameras.
 // Malformed files throw InputError("<path>: <problem>"); recoverable problems (a missing
 // texture, an unsupported optional extension, points or lines) go to Scene::warnings.

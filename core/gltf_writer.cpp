@@ -261,6 +261,7 @@ void setDielectric(Writer& w, const Material& m, tg::Material& out) {
     addTextureValue(w, e, "transmissionTexture", m.transmissionTexture, m.name);
     addExtension(w, out, "KHR_materials_transmission", std::move(e));
   }
+  if (m.unlit) addExtension(w, out, "KHR_materials_unlit", {});
   if (!m.thinWalled()) {
     tg::Value::Object e{{"thicknessFactor", tg::Value(double(m.thicknessFactor))},
                         {"attenuationColor", vec3Value(m.attenuationColor)}};

@@ -23,6 +23,7 @@ bool TextureTransform::isIdentity() const {
 }
 
 bool Material::isEmissive() const {
+  if (unlit) return false;  // its radiance is its base colour, and it is no light
   const glm::vec3 e = emission();
   return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
 }

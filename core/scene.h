@@ -80,6 +80,9 @@ struct Material {
   float thicknessFactor = 0.0f;
   glm::vec3 attenuationColor{1.0f};
   float attenuationDistance = 0.0f;  // 0 = infinite (no absorption), as the extension's default
+  // KHR_materials_unlit: the surface shows its base colour (factor x texture) as radiance to
+  // every ray and reflects nothing; not a light source for NEE (found by BSDF rays only).
+  bool unlit = false;
 
   glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
   bool isEmissive() const;

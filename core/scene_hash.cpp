@@ -18,7 +18,7 @@ static void hashMaterial(Hasher& h, const Material& m) {
   h.value(m.occlusionStrength).value(m.alphaMode).value(m.alphaCutoff).value(m.doubleSided);
   h.value(m.ior).value(m.specularFactor).value(m.specularColorFactor);
   h.value(m.transmissionFactor).value(m.thicknessFactor).value(m.attenuationColor);
-  h.value(m.attenuationDistance);
+  h.value(m.attenuationDistance).value(m.unlit);
   for (const TextureRef* r :
        {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
         &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture})

@@ -143,7 +143,9 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
     const Material& mat = scene.materials[m];
     shared::GpuMaterial g{};
     g.baseColorFactor = mat.baseColorFactor;
-    g.emissive = glm::vec4(mat.emission(), mat.alphaCutoff);
+    // Unlit: the emission output is the base colour (its factor and texture in the slot).
+    g.emissive =
+        glm::vec4(mat.unlit ? glm::vec3(mat.baseColorFactor) : mat.emission(), mat.alphaCutoff);
     g.params =
         glm::vec4(mat.metallicFactor, mat.roughnessFactor, mat.normalScale, mat.occlusionStrength);
     const unsigned alpha = mat.alphaMode == AlphaMode::Mask    ? ALPHA_MASK
@@ -152,7 +154,7 @@ void SceneGpu::uploadMaterials(const Scene& scene) {
     g.flags = glm::uvec4(alpha, mat.cullsBackFaces() ? 0u : 1u, 0u, 0u);
     const TextureRef* refs[SLOT_COUNT] = {&mat.baseColorTexture, &mat.metallicRoughnessTexture,
                                           &mat.normalTexture, &mat.occlusionTexture,
-                                          &mat.emissiveTexture};
+                                          mat.unlit ? &mat.baseColorTexture : &mat.emissiveTexture};
     for (int s = 0; s < SLOT_COUNT; ++s) {
       const bool srgb = s == SLOT_BASE_COLOR || s == SLOT_EMISSIVE;
       const unsigned tex = textureFor(scene, *refs[s], srgb);

@@ -38,6 +38,9 @@ Interpolated interpolate(const Mesh& m, const uint32_t* idx, float b1, float b2)
 glm::vec3 emission(const Scene& scene, const Material& mat, glm::vec2 uv0, glm::vec2 uv1,
                    bool frontFace) {
   if (!frontFace && !mat.doubleSided) return glm::vec3(0.0f);
+  if (mat.unlit)
+    return glm::vec3(mat.baseColorFactor) *
+           glm::vec3(sampleSlot(scene, mat.baseColorTexture, uv0, uv1, true, glm::vec4(1.0f)));
   return mat.emission() *
          glm::vec3(sampleSlot(scene, mat.emissiveTexture, uv0, uv1, true, glm::vec4(1.0f)));
 }
@@ -74,6 +77,14 @@ glm::vec3 applyNormalMap(const Scene& scene, const Material& mat, const Interpol
   return safeNormalize(tn.x * t + tn.y * b + tn.z * n, n);
 }
 
+// Reflects nothing: no diffuse, no specular (f0 = f90 = 0), no transmission.
+BsdfParams unlitBsdf() {
+  BsdfParams p{glm::vec3(0.0f), 0.0f, 1.0f};
+  p.dielectricF0 = glm::vec3(0.0f);
+  p.dielectricF90 = 0.0f;
+  return p;
+}
+
 BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolated& in) {
   const glm::vec4 base = mat.baseColorFactor * sampleSlot(scene, mat.baseColorTexture, in.uv0,
                                                           in.uv1, true, glm::vec4(1.0f));
@@ -98,6 +109,7 @@ BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolate
         sampleSlot(scene, mat.transmissionTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).r;
   p.thinWalled = mat.thinWalled();
   p.eta = mat.ior;
+  if (mat.unlit) p = unlitBsdf();
   return p;
 }
 
@@ -173,7 +185,8 @@ glm::vec3 emissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   const Mesh& mesh = scene.meshes[scene.instances[instance].mesh];
   const Material& mat = scene.materials[mesh.material];
   const bool frontFace = glm::dot(geometricNormal, incoming) < 0.0f;
-  if (!mat.emissiveTexture.valid()) return emission(scene, mat, {}, {}, frontFace);
+  const TextureRef& texture = mat.unlit ? mat.baseColorTexture : mat.emissiveTexture;
+  if (!texture.valid()) return emission(scene, mat, {}, {}, frontFace);
   const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
   return emission(scene, mat, attributeAt(mesh.uv0, idx, b1, b2),
                   attributeAt(mesh.uv1, idx, b1, b2), frontFace);

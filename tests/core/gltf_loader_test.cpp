@@ -796,6 +796,14 @@ TEST(GltfLoader, VolumeThicknessTextureIsAWarning) {
   EXPECT_TRUE(anyContains(scene.warnings, "material 'm'", "thicknessTexture is not used"));
 }
 
+TEST(GltfLoader, UnlitIsRead) {
+  const Scene scene =
+      loadGltf(writeGltf("unlit.gltf", materialExtensionsGltf(R"({"KHR_materials_unlit":{}})")));
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_TRUE(scene.materials[0].unlit);
+  EXPECT_FALSE(scene.materials[0].isEmissive());
+}
+
 TEST(GltfLoader, InfoListsEachExtensionReadOrIgnored) {
   std::string json = materialExtensionsGltf(R"({"KHR_materials_ior":{"ior":1.4}})");
   json = replaced(json, R"("scene":0,)",

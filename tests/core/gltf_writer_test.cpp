@@ -166,6 +166,7 @@ void expectSameMaterial(const Material& a, const Material& b) {
   EXPECT_EQ(a.thicknessFactor, b.thicknessFactor);
   EXPECT_EQ(a.attenuationColor, b.attenuationColor);
   EXPECT_EQ(a.attenuationDistance, b.attenuationDistance);
+  EXPECT_EQ(a.unlit, b.unlit);
   const TextureRef* ra[] = {&a.baseColorTexture,     &a.metallicRoughnessTexture,
                             &a.normalTexture,        &a.occlusionTexture,
                             &a.emissiveTexture,      &a.specularTexture,
@@ -301,6 +302,14 @@ TEST(GltfWriter, InfiniteCameraHasNoZfar) {
       EXPECT_EQ(json % 4, 0u);
     }
   }
+}
+
+TEST(GltfWriter, UnlitMaterialRoundTrips) {
+  Scene s = testScene();
+  s.materials[1].unlit = true;
+  const std::string path = (testDir() / "unlit.glb").string();
+  writeGlb(s, path);
+  EXPECT_TRUE(loadGltf(path).materials.at(1).unlit);
 }
 
 TEST(GltfWriter, BlendMaterialRoundTrips) {

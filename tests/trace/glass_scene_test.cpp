@@ -1,5 +1,6 @@
-// Glass through the whole tracer (KHR_materials_transmission + _volume): closed forms for a
-// slab and a furnace, each tolerance from the Monte Carlo error of the estimate.
+// Glass (KHR_materials_transmission + _volume) and unlit surfaces (KHR_materials_unlit)
+// through the whole tracer: closed forms for a slab, a furnace and an unlit sky, each
+// tolerance from the Monte Carlo error of the estimate.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -102,6 +103,50 @@ TEST(GlassScene, SlabTransmittanceIsFresnelAndBeerLambert) {
   const Estimate e = radianceAlong(s, {0.01f, 0.02f, 3.0f}, glm::vec3(0, 0, -1), 4000);
   RecordProperty("transmittance", std::to_string(e.mean) + " vs " + std::to_string(want));
   EXPECT_NEAR(e.mean, want, 4.0 * e.standardError + 1e-3);
+}
+
+TEST(UnlitScene, ShowsItsBaseColourToEveryRayAndReflectsNothing) {
+  // KHR_materials_unlit: inside an unlit sphere of base colour c (double-sided, seen from
+  // within), a white Lambert patch (specular 0) reflects exactly rho c: the sphere's
+  // radiance is c towards every ray, found by BSDF sampling alone (it is no light for NEE),
+  // and a point light beside it changes nothing of the sphere itself.
+  Scene s;
+  Material sky;
+  sky.unlit = true;
+  sky.doubleSided = true;
+  sky.baseColorFactor = glm::vec4(0.2f, 0.5f, 0.8f, 1.0f);
+  sky.emissiveFactor = glm::vec3(7.0f);  // ignored: unlit shows its base colour
+  s.materials.push_back(sky);
+  Material patch;
+  patch.metallicFactor = 0.0f;
+  patch.specularFactor = 0.0f;
+  patch.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+  s.materials.push_back(patch);
+  Mesh sphere = makeUvSphere(10.0f, 64, 32);
+  s.meshes.push_back(sphere);
+  Mesh floor = makeQuad({-0.5f, 0, 0.5f}, {1, 0, 0}, {0, 0, -1});  // faces +y
+  floor.material = 1;
+  s.meshes.push_back(floor);
+  s.instances = {{0, glm::mat4(1.0f), glm::mat4(1.0f), "sky"},
+                 {1, glm::mat4(1.0f), glm::mat4(1.0f), "patch"}};
+  Light l;
+  l.position = {3, 5, 0};
+  l.intensity = 50.0f;
+  s.lights.push_back(l);
+  EXPECT_FALSE(sky.isEmissive());  // not in the light set
+  // The sphere seen directly: exactly its base colour (no reflection of the point light).
+  const EmbreeScene embree(s);
+  const glm::vec3 up = glm::normalize(glm::vec3(0.1f, 1.0f, 0.2f));
+  const TraceHit h = embree.intersect({0, 1, 0}, up, 0.0f, 100.0f);
+  ASSERT_TRUE(h.hit);
+  const SurfaceHit seen = surfaceAt(s, h.instance, h.triangle, h.b1, h.b2, up);
+  EXPECT_EQ(seen.emission, glm::vec3(sky.baseColorFactor));
+  EXPECT_EQ(evalBsdf(seen.bsdf, {0, 0, 1}, glm::normalize(glm::vec3(1, 0, 1))), glm::vec3(0.0f));
+  // The patch without the point light: rho c (4 standard errors + 2e-3 for the sphere's
+  // facets).
+  s.lights.clear();
+  const Estimate e = radianceAlong(s, {0.01f, 1.0f, 0.02f}, glm::vec3(0, -1, 0), 4000);
+  EXPECT_NEAR(e.mean, 0.6 * 0.2, 4.0 * e.standardError + 2e-3);
 }
 
 }  // namespace
