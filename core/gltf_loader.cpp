@@ -246,12 +246,11 @@ std::string unsupportedIn(const std::vector<std::string>& names) {
 }
 
 // glTF 2.0 §3.12: a loader must refuse a file that requires an extension it lacks.
-void checkExtensions(const tg::Model& model, const std::string& path, Scene& scene) {
-  std::vector<std::string>& warnings = scene.warnings;
+void checkExtensions(const tg::Model& model, const std::string& path,
+                     std::vector<std::string>& warnings, std::vector<Scene::Extension>& used) {
   for (const std::string& name : model.extensionsUsed)
-    scene.extensions.push_back(
-        {name, std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
-                   kSupportedExtensions.end()});
+    used.push_back({name, std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(),
+                                    name) != kSupportedExtensions.end()});
   if (const std::string required = unsupportedIn(model.extensionsRequired); !required.empty())
     throw InputError(path, "requires unsupported extension(s) " + required);
   if (const std::string used = unsupportedIn(model.extensionsUsed); !used.empty())
@@ -1115,14 +1114,13 @@ Scene loadGltf(const std::string& path) {
   const std::vector<uint8_t> bytes = readFile(path);
   std::vector<std::string> warnings;
   const tg::Model model = parseModel(path, bytes, warnings);
-  Scene extensions;
-  extensions.warnings = std::move(warnings);
-  checkExtensions(model, path, extensions);
+  std::vector<Scene::Extension> extensions;
+  checkExtensions(model, path, warnings, extensions);
   checkBufferViews(model, path);
   Loader ld(path, model);
   ld.scene.name = path;
-  ld.scene.warnings = std::move(extensions.warnings);
-  ld.scene.extensions = std::move(extensions.extensions);
+  ld.scene.warnings = std::move(warnings);
+  ld.scene.extensions = std::move(extensions);
   for (size_t i = 0; i < model.materials.size(); ++i)
     ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
   for (int root : rootNodes(ld)) placeTree(ld, root);
