@@ -65,6 +65,24 @@ void glassSphere(Scene& s, float roughness, bool volume, glm::vec3 attenuation) 
     }
 }
 
+// Every non-emissive dielectric under a clear coat (KHR_materials_clearcoat) or with a
+// sheen (KHR_materials_sheen).
+void clearcoat(Scene& s) {
+  for (Material& m : s.materials)
+    if (!m.isEmissive() && m.metallicFactor == 0.0f) {
+      m.clearcoatFactor = 1.0f;
+      m.clearcoatRoughnessFactor = 0.1f;
+    }
+}
+
+void sheen(Scene& s) {
+  for (Material& m : s.materials)
+    if (!m.isEmissive() && m.metallicFactor == 0.0f) {
+      m.sheenColorFactor = glm::vec3(1.0f);
+      m.sheenRoughnessFactor = 0.5f;
+    }
+}
+
 struct Variant {
   std::string name;
   std::function<void(Scene&)> change;
@@ -82,9 +100,21 @@ const std::vector<Variant>& variants() {
       {"cornell-rough-glass", [](Scene& s) { glassSphere(s, 0.3f, true, glm::vec3(1.0f)); }},
       {"cornell-thin-glass", [](Scene& s) { glassSphere(s, 0.0f, false, glm::vec3(1.0f)); }},
       // The walls where the two renderers' models coincide (pure diffuse), with glass.
-      {"cornell-specular0-glass", [](Scene& s) {
+      {"cornell-specular0-glass",
+       [](Scene& s) {
          pureDiffuse(s);
          glassSphere(s, 0.0f, true, {0.9f, 0.6f, 0.3f});
+       }},
+      {"cornell-clearcoat", clearcoat},
+      {"cornell-specular0-clearcoat",
+       [](Scene& s) {
+         pureDiffuse(s);
+         clearcoat(s);
+       }},
+      {"cornell-sheen", sheen},
+      {"cornell-specular0-sheen", [](Scene& s) {
+         pureDiffuse(s);
+         sheen(s);
        }}};
   return v;
 }

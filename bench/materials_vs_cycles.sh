@@ -19,6 +19,16 @@ CAM_AT=0,1,-1
 FOVY=55
 command -v blender > /dev/null || { echo "materials_vs_cycles: blender is not installed" >&2; exit 1; }
 mkdir -p "$OUT"
+# The peer zeroes the Principled BSDF's Clearcoat and Sheen inputs ("glTF core never uses
+# these"); Blender's importer puts KHR_materials_clearcoat in Clearcoat (and the sheen in a
+# separate Velvet BSDF). A copy that leaves the two alone, so the coat reaches Cycles;
+# identical for scenes without the extensions (the importer leaves both at 0 there).
+peer_copy="$OUT/cycles_render_layers.py"
+sed 's/for name in ("Sheen", "Clearcoat", "Anisotropic"):/for name in ("Anisotropic",):/' \
+  "$PEER" > "$peer_copy"
+grep -q 'for name in ("Anisotropic",):' "$peer_copy" ||
+  { echo "materials_vs_cycles: $PEER changed; cannot keep its clearcoat" >&2; exit 1; }
+PEER="$peer_copy"
 mean() {  # mean of the three channels' averages
   oiiotool "$1" --printstats 2>/dev/null | awk '/Stats Avg:/ {print ($3 + $4 + $5) / 3; exit}'
 }

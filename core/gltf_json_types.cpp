@@ -74,6 +74,13 @@ const Schema kPbr{{numbers("baseColorFactor", 4), object("baseColorTexture", kTe
 const Schema kEmissiveStrength{{number("emissiveStrength")}};
 const Schema kIor{{number("ior")}};
 const Schema kUnlit{};
+const Schema kSheen{{numbers("sheenColorFactor", 3), number("sheenRoughnessFactor"),
+                     object("sheenColorTexture", kTextureInfo),
+                     object("sheenRoughnessTexture", kTextureInfo)}};
+const Schema kClearcoat{{number("clearcoatFactor"), number("clearcoatRoughnessFactor"),
+                         object("clearcoatTexture", kTextureInfo),
+                         object("clearcoatRoughnessTexture", kTextureInfo),
+                         object("clearcoatNormalTexture", kNormalTextureInfo)}};
 const Schema kSpecular{{number("specularFactor"), numbers("specularColorFactor", 3),
                         object("specularTexture", kTextureInfo),
                         object("specularColorTexture", kTextureInfo)}};
@@ -82,7 +89,8 @@ const Schema kTransmission{
 const Schema kVolume{{number("thicknessFactor"), object("thicknessTexture", kTextureInfo),
                       number("attenuationDistance"), numbers("attenuationColor", 3)}};
 const Schema kMaterialExtensions{
-    {object("KHR_materials_emissive_strength", kEmissiveStrength),
+    {object("KHR_materials_clearcoat", kClearcoat), object("KHR_materials_sheen", kSheen),
+     object("KHR_materials_emissive_strength", kEmissiveStrength),
      object("KHR_materials_ior", kIor), object("KHR_materials_specular", kSpecular),
      object("KHR_materials_transmission", kTransmission), object("KHR_materials_unlit", kUnlit),
      object("KHR_materials_volume", kVolume)}};

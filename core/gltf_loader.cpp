@@ -37,10 +37,10 @@ constexpr size_t kMaxZeroAccessorCount = size_t(1) << 26;
 constexpr int kTextureNotLoaded = -2;
 
 const std::vector<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-    "KHR_materials_ior",          "KHR_materials_specular",
-    "KHR_materials_transmission", "KHR_materials_unlit",
-    "KHR_materials_volume",       "KHR_texture_transform"};
+    "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+    "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_unlit",     "KHR_materials_volume",
+    "KHR_texture_transform"};
 
 // ---------------------------------------------------------------------------------------
 // Reading and parsing the file
@@ -693,6 +693,27 @@ void convertDielectric(Loader& ld, const tg::Material& gm, Material& m, const st
   }
 }
 
+// KHR_materials_sheen and _clearcoat (their specifications' defaults). The coat's own
+// normal map is not applied: the coat takes the base's shading normal, with a warning.
+void convertLayers(Loader& ld, const tg::Material& gm, Material& m, const std::string& where) {
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_sheen")) {
+    m.sheenColorFactor = vec3Or(*e, "sheenColorFactor", glm::vec3(0.0f));
+    m.sheenRoughnessFactor = numberOr(*e, "sheenRoughnessFactor", 0.0f);
+    m.sheenColorTexture = extensionTexture(ld, *e, "sheenColorTexture", where);
+    m.sheenRoughnessTexture = extensionTexture(ld, *e, "sheenRoughnessTexture", where);
+  }
+  if (const tg::Value* e = materialExtension(gm, "KHR_materials_clearcoat")) {
+    m.clearcoatFactor = numberOr(*e, "clearcoatFactor", 0.0f);
+    m.clearcoatRoughnessFactor = numberOr(*e, "clearcoatRoughnessFactor", 0.0f);
+    m.clearcoatTexture = extensionTexture(ld, *e, "clearcoatTexture", where);
+    m.clearcoatRoughnessTexture = extensionTexture(ld, *e, "clearcoatRoughnessTexture", where);
+    if (e->Has("clearcoatNormalTexture"))
+      ld.warn(where +
+              ": KHR_materials_clearcoat clearcoatNormalTexture is not used (the coat "
+              "takes the base's shading normal)");
+  }
+}
+
 AlphaMode alphaMode(Loader& ld, const tg::Material& gm, const std::string& where) {
   if (gm.alphaMode == "MASK") return AlphaMode::Mask;
   if (gm.alphaMode == "BLEND") return AlphaMode::Blend;  // stochastic coverage
@@ -728,6 +749,12 @@ void checkDielectric(const Loader& ld, const Material& m, const std::string& wha
     ld.fail(what + "KHR_materials_specular factor must be in [0, 1], its colour >= 0");
   if (!within(m.transmissionFactor, 0, 1))
     ld.fail(what + "KHR_materials_transmission factor must be in [0, 1]");
+  const glm::vec3 sh = m.sheenColorFactor;
+  if (!(within(sh.r, 0, 1) && within(sh.g, 0, 1) && within(sh.b, 0, 1)) ||
+      !within(m.sheenRoughnessFactor, 0, 1))
+    ld.fail(what + "KHR_materials_sheen colour and roughness must be in [0, 1]");
+  if (!within(m.clearcoatFactor, 0, 1) || !within(m.clearcoatRoughnessFactor, 0, 1))
+    ld.fail(what + "KHR_materials_clearcoat factor and roughness must be in [0, 1]");
   if (!within(m.thicknessFactor, 0, 1e30f) ||
       !(within(ac.r, 0, 1) && within(ac.g, 0, 1) && within(ac.b, 0, 1)) ||
       !(m.attenuationDistance == 0.0f || within(m.attenuationDistance, 1e-30f, 1e30f)))
@@ -774,6 +801,7 @@ Material convertMaterial(Loader& ld, const tg::Material& gm, size_t index) {
   m.alphaCutoff = float(gm.alphaCutoff);
   m.doubleSided = gm.doubleSided;
   convertDielectric(ld, gm, m, where);
+  convertLayers(ld, gm, m, where);
   checkMaterial(ld, m);
   convertTextures(ld, gm, m, where);
   return m;

@@ -241,7 +241,8 @@ void addTextureValue(Writer& w, tg::Value::Object& ext, const char* key, const T
   ext[key] = tg::Value(o);
 }
 
-// KHR_materials_ior, _specular, _transmission and _volume, each only where it differs from
+// KHR_materials_ior, _specular, _transmission, _unlit, _sheen, _clearcoat and _volume, each
+// only where it differs from
 // the core model (the loader's defaults).
 void setDielectric(Writer& w, const Material& m, tg::Material& out) {
   const Material core;
@@ -262,6 +263,24 @@ void setDielectric(Writer& w, const Material& m, tg::Material& out) {
     addExtension(w, out, "KHR_materials_transmission", std::move(e));
   }
   if (m.unlit) addExtension(w, out, "KHR_materials_unlit", {});
+  if (m.sheenColorFactor != core.sheenColorFactor || m.sheenColorTexture.valid() ||
+      m.sheenRoughnessFactor != core.sheenRoughnessFactor || m.sheenRoughnessTexture.valid()) {
+    tg::Value::Object e{{"sheenColorFactor", vec3Value(m.sheenColorFactor)},
+                        {"sheenRoughnessFactor", tg::Value(double(m.sheenRoughnessFactor))}};
+    addTextureValue(w, e, "sheenColorTexture", m.sheenColorTexture, m.name);
+    addTextureValue(w, e, "sheenRoughnessTexture", m.sheenRoughnessTexture, m.name);
+    addExtension(w, out, "KHR_materials_sheen", std::move(e));
+  }
+  if (m.clearcoatFactor != core.clearcoatFactor || m.clearcoatTexture.valid() ||
+      m.clearcoatRoughnessFactor != core.clearcoatRoughnessFactor ||
+      m.clearcoatRoughnessTexture.valid()) {
+    tg::Value::Object e{
+        {"clearcoatFactor", tg::Value(double(m.clearcoatFactor))},
+        {"clearcoatRoughnessFactor", tg::Value(double(m.clearcoatRoughnessFactor))}};
+    addTextureValue(w, e, "clearcoatTexture", m.clearcoatTexture, m.name);
+    addTextureValue(w, e, "clearcoatRoughnessTexture", m.clearcoatRoughnessTexture, m.name);
+    addExtension(w, out, "KHR_materials_clearcoat", std::move(e));
+  }
   if (!m.thinWalled()) {
     tg::Value::Object e{{"thicknessFactor", tg::Value(double(m.thicknessFactor))},
                         {"attenuationColor", vec3Value(m.attenuationColor)}};

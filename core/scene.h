@@ -83,6 +83,16 @@ struct Material {
   // KHR_materials_unlit: the surface shows its base colour (factor x texture) as radiance to
   // every ray and reflects nothing; not a light source for NEE (found by BSDF rays only).
   bool unlit = false;
+  // KHR_materials_sheen: a fabric layer over the base (colour black = none).
+  glm::vec3 sheenColorFactor{0.0f};
+  float sheenRoughnessFactor = 0.0f;
+  TextureRef sheenColorTexture;      // sRGB, RGB = colour
+  TextureRef sheenRoughnessTexture;  // linear, A = roughness
+  // KHR_materials_clearcoat: a clear dielectric coat (ior 1.5) over the sheen and base.
+  float clearcoatFactor = 0.0f;
+  float clearcoatRoughnessFactor = 0.0f;
+  TextureRef clearcoatTexture;           // linear, R = strength
+  TextureRef clearcoatRoughnessTexture;  // linear, G = roughness
 
   glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
   bool isEmissive() const;

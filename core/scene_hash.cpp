@@ -19,9 +19,13 @@ static void hashMaterial(Hasher& h, const Material& m) {
   h.value(m.ior).value(m.specularFactor).value(m.specularColorFactor);
   h.value(m.transmissionFactor).value(m.thicknessFactor).value(m.attenuationColor);
   h.value(m.attenuationDistance).value(m.unlit);
+  h.value(m.sheenColorFactor).value(m.sheenRoughnessFactor);
+  h.value(m.clearcoatFactor).value(m.clearcoatRoughnessFactor);
   for (const TextureRef* r :
        {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-        &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture})
+        &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture,
+        &m.sheenColorTexture, &m.sheenRoughnessTexture, &m.clearcoatTexture,
+        &m.clearcoatRoughnessTexture})
     h.value(r->texture)
         .value(r->texCoord)
         .value(r->transform.offset)

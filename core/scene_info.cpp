@@ -101,7 +101,7 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
 
 void describeMaterials(std::ostream& out, const Scene& scene) {
   size_t emissive = 0, metal = 0, dielectric = 0, mixed = 0, mask = 0, blend = 0, twoSided = 0,
-         glass = 0;
+         glass = 0, coated = 0, sheen = 0;
   for (const Material& m : scene.materials) {
     emissive += m.isEmissive();
     metal += m.metallicFactor >= 1.0f;
@@ -111,11 +111,13 @@ void describeMaterials(std::ostream& out, const Scene& scene) {
     blend += m.alphaMode == AlphaMode::Blend;
     twoSided += m.doubleSided;
     glass += m.transmissionFactor > 0.0f;
+    coated += m.clearcoatFactor > 0.0f;
+    sheen += m.sheenColorFactor != glm::vec3(0.0f);
   }
   out << "materials: " << count(scene.materials.size()) << " (emissive " << emissive << ", metal "
       << metal << ", dielectric " << dielectric << ", partly metallic " << mixed << ", MASK "
       << mask << ", BLEND " << blend << ", double-sided " << twoSided << ", transmissive " << glass
-      << ")\n";
+      << ", clear-coated " << coated << ", sheen " << sheen << ")\n";
   if (scene.extensions.empty()) return;
   out << "extensions:";
   for (const Scene::Extension& e : scene.extensions)

@@ -146,20 +146,37 @@ glm::vec3 diffuseAlbedo(const BsdfParams& p) {
   return (1.0f - std::clamp(p.metallic, 0.0f, 1.0f)) * (1.0f - transmission) * p.baseColor;
 }
 
-glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
-  // Karis 2014, EnvBRDFApprox (after Lazarov 2013): scale A and bias B with F = f0 A +
-  // f90 B. The glass lobe's part is its Fresnel split at the macro-surface.
-  const float nv = std::clamp(cosThetaO, 0.0f, 1.0f);
-  const BsdfVertex v = prepareBsdf(p, glm::vec3(0.0f, safeSqrt(1.0f - nv * nv), nv));
-  const float r = std::clamp(p.roughness, 0.0f, 1.0f);
+namespace {
+
+// Karis 2014, EnvBRDFApprox (after Lazarov 2013): the split-sum scale A and bias B of a GGX
+// lobe, F = f0 A + f90 B.
+glm::vec2 envBrdfApprox(float roughness, float nv) {
+  const float r = isFinite(roughness) ? std::clamp(roughness, 0.0f, 1.0f) : 0.0f;
   const glm::vec4 c0(-1.0f, -0.0275f, -0.572f, 0.022f), c1(1.0f, 0.0425f, 1.04f, -0.04f);
   const glm::vec4 q = r * c0 + c1;
   const float a004 = std::min(q.x * q.x, std::exp2(-9.28f * nv)) * q.x + q.y;
-  const glm::vec2 ab = glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(q.z, q.w);
-  const glm::vec3 brdf = v.f0 * ab.x + v.f90 * ab.y;
-  if (v.glass == 0.0f) return brdf;
-  const float fr = fresnelDielectric(nv, v.eta);
-  return v.brdfWeight * brdf + v.glass * (fr + (1.0f - fr) * v.tint);
+  return glm::vec2(-1.04f, 1.04f) * a004 + glm::vec2(q.z, q.w);
+}
+
+}  // namespace
+
+glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
+  // The glass lobe's part is its Fresnel split at the macro-surface; the layers add their
+  // albedos and filter the base's as "The layers" in bsdf.h do.
+  const float nv = std::clamp(cosThetaO, 0.0f, 1.0f);
+  const BsdfVertex v = prepareBsdf(p, glm::vec3(0.0f, safeSqrt(1.0f - nv * nv), nv));
+  const glm::vec2 ab = envBrdfApprox(p.roughness, nv);
+  glm::vec3 albedo = v.f0 * ab.x + v.f90 * ab.y;
+  if (v.glass > 0.0f) {
+    const float fr = fresnelDielectric(nv, v.eta);
+    albedo = v.brdfWeight * albedo + v.glass * (fr + (1.0f - fr) * v.tint);
+  }
+  if (!v.layered) return albedo;
+  const float sheen = std::min(v.sheenAlbedoWo, 1.0f);
+  const float through = 1.0f - v.coatFresnelWo;
+  const glm::vec2 coat = envBrdfApprox(p.clearcoatRoughness, nv);
+  return through * ((1.0f - v.sheenMax * sheen) * albedo + sheen * v.sheenColor) +
+         glm::vec3(v.coat * (kDielectricF0 * coat.x + coat.y));
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
@@ -303,6 +320,8 @@ void prepareGlass(const BsdfParams& p, float metallic, BsdfVertex& v, float& brd
   v.reflectProbability = std::clamp(fr, kMinGlassHalfProbability, 1.0f - kMinGlassHalfProbability);
 }
 
+void prepareLayers(const BsdfParams& p, BsdfVertex& v);
+
 }  // namespace
 
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
@@ -337,10 +356,14 @@ BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
     v.glassProbability = wg + wb > 0.0f ? wg / (wg + wb) : 1.0f;
     if (!(v.brdfWeight > 0.0f)) v.glassProbability = 1.0f;
   }
+  prepareLayers(p, v);
   return v;
 }
 
-BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
+namespace {
+
+// The base: the metallic-roughness BRDF and the glass lobe, without sheen and coat.
+BsdfEval evalBase(const BsdfVertex& v, const glm::vec3& wi) {
   if (v.glass == 0.0f) return evalBrdf(v, wi);
   if (!(v.wo.z > 0.0f)) return {};
   BsdfEval e = evalBrdf(v, wi);
@@ -353,7 +376,7 @@ BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
   return e;
 }
 
-BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
+BsdfSample sampleBase(const BsdfVertex& v, glm::vec2 u) {
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
   if (v.glass > 0.0f && u.x < v.glassProbability) {
@@ -378,6 +401,125 @@ BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
     s.f = specular(v, s.wi, h, d) + s.fDiffuse;
     s.weight = s.f * (s.wi.z / s.pdf);
     return s;
+  }
+  const BsdfEval e = evalBsdfAndPdf(v, s.wi);
+  if (!(e.pdf > 0.0f) || !isFinite(e.pdf)) return {};
+  s.pdf = e.pdf;
+  s.fDiffuse = e.f.diffuse;
+  s.f = e.f.total();
+  s.weight = s.f * (std::abs(s.wi.z) / s.pdf);
+  return s;
+}
+
+// KHR_materials_clearcoat's Fresnel: Schlick with f0 0.04, f90 1.
+float coatFresnel(float cosTheta) {
+  return fresnelSchlick(glm::vec3(kDielectricF0), cosTheta).x;
+}
+
+// The coat and sheen lobes at wi and the factor A_c A_s that filters the base (bsdf.h,
+// "The layers"), with the layers' own densities.
+struct LayerEval {
+  glm::vec3 coat{0.0f}, sheen{0.0f};  // coat is c F D G / (4 ..); sheen already times A_c
+  float baseFilter = 1.0f;            // A_c A_s
+  float coatPdf = 0.0f, sheenPdf = 0.0f;
+};
+
+LayerEval evalLayers(const BsdfVertex& v, const glm::vec3& wi) {
+  LayerEval e;
+  const float cosI = std::min(std::abs(wi.z), 1.0f);
+  const float coatIn = 1.0f - v.coat * coatFresnel(cosI);
+  const float coatFilter = (1.0f - v.coatFresnelWo) * coatIn;
+  float sheenFilter = 1.0f, sheenNormal = 1.0f;
+  if (v.sheenMax > 0.0f) {
+    const float eV = v.sheenAlbedoWo, eL = sheenAlbedo(cosI, v.sheenRoughness);
+    sheenFilter =
+        std::min(1.0f - v.sheenMax * std::min(eV, 1.0f), 1.0f - v.sheenMax * std::min(eL, 1.0f));
+    sheenNormal = 1.0f / std::max({1.0f, eV, eL});
+  }
+  e.baseFilter = coatFilter * sheenFilter;
+  glm::vec3 h;
+  if (!(wi.z > 0.0f) || !halfVector(v.wo, wi, h)) return e;
+  if (v.coat > 0.0f) {
+    const float d = ggxD(h, v.coatAlpha);
+    const float g = v.coatG1OverCosWo * d * 0.25f;  // the VNDF through reflection
+    e.coat = glm::vec3(v.coat * coatFresnel(glm::dot(v.wo, h)) * g * ggxG1OverCos(wi, v.coatAlpha));
+    e.coatPdf = g;
+  }
+  if (v.sheenMax > 0.0f) {
+    const float g = 1.0f / (1.0f + v.sheenLambdaWo + charlieLambda(wi.z, v.sheenAlpha));
+    const float f = charlieD(h, v.sheenAlpha) * g * sheenNormal / (4.0f * v.wo.z * wi.z);
+    e.sheen = coatFilter * f * v.sheenColor;
+    e.sheenPdf = uniformHemispherePdf();
+  }
+  return e;
+}
+
+// The layers' choice: each lobe by its albedo estimate at wo, as the base's lobes are.
+void prepareLayers(const BsdfParams& p, BsdfVertex& v) {
+  const auto unit = [](float x) { return isFinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f; };
+  v.coat = unit(p.clearcoat);
+  v.sheenColor = glm::clamp(isFinite(p.sheenColor) ? p.sheenColor : glm::vec3(0.0f), 0.0f, 1.0f);
+  v.sheenMax = std::max({v.sheenColor.r, v.sheenColor.g, v.sheenColor.b});
+  v.layered = v.coat > 0.0f || v.sheenMax > 0.0f;
+  if (!v.layered) return;
+  const float nv = v.wo.z;
+  v.coatAlpha = roughnessToAlpha(p.clearcoatRoughness);
+  v.coatG1OverCosWo = ggxG1OverCos(v.wo, v.coatAlpha);
+  v.coatFresnelWo = v.coat * coatFresnel(nv);
+  v.sheenRoughness = unit(p.sheenRoughness);
+  v.sheenAlpha = sheenRoughnessToAlpha(v.sheenRoughness);
+  v.sheenLambdaWo = charlieLambda(nv, v.sheenAlpha);
+  v.sheenAlbedoWo = sheenAlbedo(nv, v.sheenRoughness);
+  // Estimates: the coat's c F_c(n.v), the sheen's (1 - c F_c) lum(sheenColor) E, the
+  // base's (1 - c F_c)(1 - max(sheen) E) times 1 (its albedo is not known here, and a dark
+  // base under a coat must still be sampled where the coat is weak).
+  const float through = 1.0f - v.coatFresnelWo;
+  const float coat = v.coatFresnelWo;
+  const float sheen = through * luminance(v.sheenColor) * std::min(v.sheenAlbedoWo, 1.0f);
+  const float base = through * (1.0f - v.sheenMax * std::min(v.sheenAlbedoWo, 1.0f));
+  const float sum = coat + sheen + base;
+  if (!(sum > 0.0f)) return;
+  v.coatProbability = coat / sum;
+  v.sheenProbability = sheen / sum;
+}
+
+}  // namespace
+
+BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
+  BsdfEval e = evalBase(v, wi);
+  if (!v.layered) return e;
+  if (!(v.wo.z > 0.0f)) return {};
+  const LayerEval l = evalLayers(v, wi);
+  const float pBase = 1.0f - v.coatProbability - v.sheenProbability;
+  e.f.diffuse *= l.baseFilter;
+  e.f.specular = e.f.specular * l.baseFilter + l.sheen + l.coat;
+  e.pdf = pBase * e.pdf + v.sheenProbability * l.sheenPdf + v.coatProbability * l.coatPdf;
+  return e;
+}
+
+BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
+  if (!v.layered) return sampleBase(v, u);
+  if (!(v.wo.z > 0.0f)) return {};
+  const float pCoat = v.coatProbability, pLayers = pCoat + v.sheenProbability;
+  BsdfSample s;
+  if (u.x < pLayers) {
+    const bool coat = u.x < pCoat;
+    u.x = coat ? remapLobeNumber(u.x, pCoat, true)
+               : std::min((u.x - pCoat) / v.sheenProbability, 0x1.fffffep-1f);
+    if (coat) {
+      const glm::vec3 h = sampleGgxVndf(v.wo, v.coatAlpha, u);
+      s.wi = 2.0f * glm::dot(v.wo, h) * h - v.wo;
+    } else {
+      s.wi = sampleUniformHemisphere(u);
+    }
+    if (!(s.wi.z > 0.0f)) return {};
+    s.specularLobe = true;
+  } else {
+    u.x = remapLobeNumber(u.x, pLayers, false);
+    const BsdfSample base = sampleBase(v, u);
+    if (!base.valid()) return {};
+    s.wi = base.wi;
+    s.specularLobe = base.specularLobe;
   }
   const BsdfEval e = evalBsdfAndPdf(v, s.wi);
   if (!(e.pdf > 0.0f) || !isFinite(e.pdf)) return {};

@@ -50,6 +50,13 @@ struct BsdfParams {
   // entering a volume from outside, 1 / ior when leaving it; ior on a thin wall.
   float eta = 1.5f;
   bool thinWalled = true;  // no KHR_materials_volume: transmission does not bend
+  // Layers over that base, glTF's order (see "The layers" below): KHR_materials_sheen's
+  // colour (linear, [0,1]; black = no sheen) and perceptual roughness, then
+  // KHR_materials_clearcoat's strength (in [0,1]; 0 = no coat) and perceptual roughness.
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
 };
 
 // GGX alpha from glTF perceptual roughness (glTF 2.0 Appendix B: alpha = roughness^2),
@@ -97,6 +104,29 @@ glm::vec3 sampleGgxVndf(const glm::vec3& wo, float alpha, glm::vec2 u);
 // D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z, a density over h in solid angle.
 float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha);
 
+// --- The sheen lobe (KHR_materials_sheen). ---------------------------------------------
+
+// Sheen roughness is floored as the specular one is (kMinPerceptualRoughness): below it the
+// Charlie peak at grazing half-vectors narrows under a few degrees.
+float sheenRoughnessToAlpha(float sheenRoughness);
+
+// The "Charlie" distribution (Estevez & Kulla 2017, eq. 2):
+// D(h) = (2 + 1/alpha) sin(theta_h)^(1/alpha) / (2 pi), with sin^2 = h.x^2 + h.y^2.
+float charlieD(const glm::vec3& h, float alpha);
+
+// Their shadowing Lambda (sec. 3, the fitted curve with its 5 coefficients interpolated in
+// (1 - alpha)^2; mirrored about cos 0.5 for cos > 0.5), as the glTF sheen extension gives.
+float charlieLambda(float cosTheta, float alpha);
+
+// The sheen BRDF with sheenColor 1 (f alone, without the cosine); zero unless both
+// directions are above the surface.
+float sheenBrdf(const glm::vec3& wo, const glm::vec3& wi, float alpha);
+
+// E(cos, roughness) = the integral of sheenBrdf(wo, wi) n.wi over the hemisphere, the
+// sheen's directional albedo, bilinear in a table integrated offline
+// (trace/sheen_albedo_table.h, written by photovr_sheen_table).
+float sheenAlbedo(float cosTheta, float sheenRoughness);
+
 // --- The BSDF. -------------------------------------------------------------------------
 //
 // The glass lobe (KHR_materials_transmission): a share g = (1 - metallic) transmission of
@@ -116,6 +146,28 @@ float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha);
 // transmission, as glTF's layering has it. The glass lobe ignores dielectricF0/F90: with
 // Schlick, R + T at an interface would not sum to 1 where total internal reflection is, and
 // a glass sphere in a white furnace would darken. g = 0 is the BRDF below to the bit.
+
+// The layers (KHR_materials_sheen, KHR_materials_clearcoat): over the base B above,
+//   f = coat + A_c (sheen + A_s B)
+//   coat  = c F_c(wo.h) D(h) G / (4 |n.l||n.v|), GGX with the coat's own alpha, F_c Schlick
+//           with f0 0.04 (KHR_materials_clearcoat: "the same as the specular term ... F0
+//           equal 0.04"), reflection only
+//   A_c   = (1 - c F_c(n.v)) (1 - c F_c(|n.l|)), the light the coat lets through on the
+//           way in and on the way out
+//   sheen = A_c sheenColor sheenBrdf(wo, wi) / max(1, E(n.v), E(n.l)), reflection only,
+//           sheenBrdf = D_charlie(h) / ((1 + Lambda(n.v) + Lambda(n.l)) 4 |n.l||n.v|)
+//           (Estevez & Kulla, "Production Friendly Microfacet Sheen BRDF", 2017, with
+//           alpha = sheenRoughness^2 as the Khronos sample viewer)
+//   A_s   = min(1 - max(sheenColor) E'(n.v), 1 - max(sheenColor) E'(|n.l|)), the sheen
+//           extension's albedo scaling, E = sheenAlbedo() (the sheen's directional albedo),
+//           E' = min(E, 1)
+// The max(1, E(n.v), E(n.l)) is ours: Estevez & Kulla's fitted Lambda is too small at
+// grazing angles for alpha < 0.07, where E reaches 1.19 at alpha 0.04 and 4.1 at the floor
+// (photovr_sheen_table); dividing by it (symmetric, so reciprocal) keeps the sheen's albedo
+// at most E' and the whole BSDF's at most 1, and changes nothing where E <= 1.
+// The coat's A_c departs from the extension's 1 - c F_c(n.v) on purpose: that factor alone
+// is not reciprocal, and light that crosses the coat twice is filtered twice (as the
+// base's own diffuse lobe is, above). Without either layer this is the base to the bit.
 
 // Evaluation convention: f alone, without the cosine; the caller multiplies by |wi.z|
 // (as pbrt's BxDF::f). Reciprocal: evalBsdf(p, a, b) == evalBsdf(p, b, a).
@@ -202,6 +254,21 @@ struct BsdfVertex {
   float eta = 1.5f;
   glm::vec3 tint{1.0f};  // baseColor, the transmitted light's filter
   bool thinWalled = true;
+  // The layers ("The layers" above); none when both strengths are 0.
+  bool layered = false;
+  float coat = 0.0f;  // c
+  float coatAlpha = kMinAlpha;
+  float coatG1OverCosWo = 0.0f;
+  float coatFresnelWo = 0.0f;  // c F_c(n.v)
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
+  float sheenAlpha = 1.0f;
+  float sheenMax = 0.0f;       // max(sheenColor)
+  float sheenLambdaWo = 0.0f;  // charlieLambda(n.v)
+  float sheenAlbedoWo = 0.0f;  // E(n.v)
+  // Lobe choice: the coat, then the sheen, then the base (remaining probability).
+  float coatProbability = 0.0f;
+  float sheenProbability = 0.0f;
 };
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo);
 

@@ -39,6 +39,13 @@ glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   return {d.x, d.y, safeSqrt(1.0f - d.x * d.x - d.y * d.y)};
 }
 
+glm::vec3 sampleUniformHemisphere(glm::vec2 u) {
+  const float z = u.x;
+  const float r = safeSqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
 glm::vec3 sampleUniformSphere(glm::vec2 u) {
   const float z = 1.0f - 2.0f * u.x;
   const float r = safeSqrt(1.0f - z * z);

@@ -72,6 +72,12 @@ inline float cosineHemispherePdf(float cosTheta) {
   return std::max(0.0f, cosTheta) * kInvPi;
 }
 
+// Uniform over the hemisphere around +z (pbrt sec. A.5.2): z = u.x.
+glm::vec3 sampleUniformHemisphere(glm::vec2 u);
+inline float uniformHemispherePdf() {
+  return 0.5f * kInvPi;
+}
+
 glm::vec3 sampleUniformSphere(glm::vec2 u);
 inline float uniformSpherePdf() {
   return kInv4Pi;

@@ -31,8 +31,13 @@ bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3
   // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
   // between the eyes by its own parallax, not the glass surface's.
   if (hit.bsdf.transmission > 0.0f) return false;
+  // A clear coat is a glossy lobe of its own roughness.
+  const float roughness = hit.bsdf.clearcoat > 0.0f
+                              ? std::min(hit.bsdf.roughness, hit.bsdf.clearcoatRoughness)
+                              : hit.bsdf.roughness;
+  if (roughness < kReuseMinRoughness) return false;
   const float c = glm::dot(glm::normalize(toLeft), glm::normalize(toRight));
-  return roughnessToAlpha(hit.bsdf.roughness) >= std::acos(std::min(1.0f, c));
+  return roughnessToAlpha(roughness) >= std::acos(std::min(1.0f, c));
 }
 
 }  // namespace

@@ -109,6 +109,22 @@ BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolate
         sampleSlot(scene, mat.transmissionTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).r;
   p.thinWalled = mat.thinWalled();
   p.eta = mat.ior;
+  // KHR_materials_sheen (colour sRGB RGB, roughness A) and _clearcoat (strength R,
+  // roughness G), each texture only where its factor can show.
+  if (mat.sheenColorFactor != glm::vec3(0.0f)) {
+    p.sheenColor = mat.sheenColorFactor * glm::vec3(sampleSlot(scene, mat.sheenColorTexture, in.uv0,
+                                                               in.uv1, true, glm::vec4(1.0f)));
+    p.sheenRoughness =
+        mat.sheenRoughnessFactor *
+        sampleSlot(scene, mat.sheenRoughnessTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).a;
+  }
+  if (mat.clearcoatFactor > 0.0f) {
+    p.clearcoat = mat.clearcoatFactor *
+                  sampleSlot(scene, mat.clearcoatTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).r;
+    p.clearcoatRoughness =
+        mat.clearcoatRoughnessFactor *
+        sampleSlot(scene, mat.clearcoatRoughnessTexture, in.uv0, in.uv1, false, glm::vec4(1.0f)).g;
+  }
   if (mat.unlit) p = unlitBsdf();
   return p;
 }

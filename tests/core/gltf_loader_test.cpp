@@ -796,6 +796,41 @@ TEST(GltfLoader, VolumeThicknessTextureIsAWarning) {
   EXPECT_TRUE(anyContains(scene.warnings, "material 'm'", "thicknessTexture is not used"));
 }
 
+TEST(GltfLoader, SheenAndClearcoatReachTheMaterial) {
+  const Scene scene = loadGltf(writeGltf("layers.gltf", materialExtensionsGltf(R"({
+"KHR_materials_sheen":{"sheenColorFactor":[0.5,0.25,1],"sheenRoughnessFactor":0.3},
+"KHR_materials_clearcoat":{"clearcoatFactor":0.75,"clearcoatRoughnessFactor":0.125}})")));
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.sheenColorFactor, glm::vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_FLOAT_EQ(m.sheenRoughnessFactor, 0.3f);
+  EXPECT_FLOAT_EQ(m.clearcoatFactor, 0.75f);
+  EXPECT_FLOAT_EQ(m.clearcoatRoughnessFactor, 0.125f);
+  EXPECT_TRUE(scene.warnings.empty());
+  EXPECT_NE(describeScene(scene).find("clear-coated 1, sheen 1"), std::string::npos);
+}
+
+TEST(GltfLoader, SheenAndClearcoatOutOfRangeAreErrors) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"KHR_materials_sheen":{"sheenColorFactor":[2,0,0]}})", "KHR_materials_sheen"},
+      {R"({"KHR_materials_sheen":{"sheenRoughnessFactor":-0.5}})", "KHR_materials_sheen"},
+      {R"({"KHR_materials_clearcoat":{"clearcoatFactor":1.5}})", "KHR_materials_clearcoat"},
+      {R"({"KHR_materials_clearcoat":{"clearcoatRoughnessFactor":"x"}})",
+       "clearcoatRoughnessFactor"}};
+  for (const auto& [extensions, message] : cases) {
+    const std::string error =
+        loadError(writeGltf("bad_layers.gltf", materialExtensionsGltf(extensions)));
+    EXPECT_NE(error.find(message), std::string::npos) << extensions << ": " << error;
+  }
+}
+
+TEST(GltfLoader, ClearcoatNormalTextureIsAWarning) {
+  const Scene scene =
+      loadGltf(writeGltf("coat_normal.gltf", materialExtensionsGltf(R"({"KHR_materials_clearcoat":{
+"clearcoatFactor":1,"clearcoatNormalTexture":{"index":0}}})")));
+  EXPECT_TRUE(anyContains(scene.warnings, "material 'm'", "clearcoatNormalTexture is not used"));
+}
+
 TEST(GltfLoader, UnlitIsRead) {
   const Scene scene =
       loadGltf(writeGltf("unlit.gltf", materialExtensionsGltf(R"({"KHR_materials_unlit":{}})")));
@@ -806,11 +841,12 @@ TEST(GltfLoader, UnlitIsRead) {
 
 TEST(GltfLoader, InfoListsEachExtensionReadOrIgnored) {
   std::string json = materialExtensionsGltf(R"({"KHR_materials_ior":{"ior":1.4}})");
-  json = replaced(json, R"("scene":0,)",
-                  R"("extensionsUsed":["KHR_materials_ior","KHR_materials_sheen"],"scene":0,)");
+  json =
+      replaced(json, R"("scene":0,)",
+               R"("extensionsUsed":["KHR_materials_ior","KHR_materials_iridescence"],"scene":0,)");
   const Scene scene = loadGltf(writeGltf("extensions.gltf", json));
   const std::string info = describeScene(scene);
-  EXPECT_NE(info.find("extensions: KHR_materials_ior (read) KHR_materials_sheen (ignored)"),
+  EXPECT_NE(info.find("extensions: KHR_materials_ior (read) KHR_materials_iridescence (ignored)"),
             std::string::npos)
       << info;
 }

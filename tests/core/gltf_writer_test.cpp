@@ -71,6 +71,14 @@ Material texturedMaterial() {
   m.thicknessFactor = 0.1f;
   m.attenuationColor = {0.5f, 0.75f, 1.0f};
   m.attenuationDistance = 3.0f;
+  m.sheenColorFactor = {0.5f, 0.25f, 1.0f};
+  m.sheenRoughnessFactor = 0.3f;
+  m.sheenColorTexture = {0, 0, {}};
+  m.sheenRoughnessTexture = {0, 1, {}};
+  m.clearcoatFactor = 0.75f;
+  m.clearcoatRoughnessFactor = 0.125f;
+  m.clearcoatTexture = {0, 0, {}};
+  m.clearcoatRoughnessTexture = {0, 0, {{0.0f, 0.5f}, 0.0f, {1.0f, 1.0f}}};
   return m;
 }
 
@@ -167,15 +175,21 @@ void expectSameMaterial(const Material& a, const Material& b) {
   EXPECT_EQ(a.attenuationColor, b.attenuationColor);
   EXPECT_EQ(a.attenuationDistance, b.attenuationDistance);
   EXPECT_EQ(a.unlit, b.unlit);
-  const TextureRef* ra[] = {&a.baseColorTexture,     &a.metallicRoughnessTexture,
-                            &a.normalTexture,        &a.occlusionTexture,
-                            &a.emissiveTexture,      &a.specularTexture,
-                            &a.specularColorTexture, &a.transmissionTexture};
-  const TextureRef* rb[] = {&b.baseColorTexture,     &b.metallicRoughnessTexture,
-                            &b.normalTexture,        &b.occlusionTexture,
-                            &b.emissiveTexture,      &b.specularTexture,
-                            &b.specularColorTexture, &b.transmissionTexture};
-  for (int i = 0; i < 8; ++i) {
+  EXPECT_EQ(a.sheenColorFactor, b.sheenColorFactor);
+  EXPECT_EQ(a.sheenRoughnessFactor, b.sheenRoughnessFactor);
+  EXPECT_EQ(a.clearcoatFactor, b.clearcoatFactor);
+  EXPECT_EQ(a.clearcoatRoughnessFactor, b.clearcoatRoughnessFactor);
+  const TextureRef* ra[] = {
+      &a.baseColorTexture,      &a.metallicRoughnessTexture, &a.normalTexture,
+      &a.occlusionTexture,      &a.emissiveTexture,          &a.specularTexture,
+      &a.specularColorTexture,  &a.transmissionTexture,      &a.sheenColorTexture,
+      &a.sheenRoughnessTexture, &a.clearcoatTexture,         &a.clearcoatRoughnessTexture};
+  const TextureRef* rb[] = {
+      &b.baseColorTexture,      &b.metallicRoughnessTexture, &b.normalTexture,
+      &b.occlusionTexture,      &b.emissiveTexture,          &b.specularTexture,
+      &b.specularColorTexture,  &b.transmissionTexture,      &b.sheenColorTexture,
+      &b.sheenRoughnessTexture, &b.clearcoatTexture,         &b.clearcoatRoughnessTexture};
+  for (int i = 0; i < 12; ++i) {
     EXPECT_EQ(ra[i]->texture, rb[i]->texture) << i;
     EXPECT_EQ(ra[i]->texCoord, rb[i]->texCoord) << i;
     EXPECT_EQ(ra[i]->transform.offset, rb[i]->transform.offset) << i;

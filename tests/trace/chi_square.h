@@ -16,7 +16,7 @@ namespace photovr::test {
 // The number of chi-square tests in the executable (update when adding one) and the
 // per-test significance that keeps the chance of any false alarm across all of them at
 // 0.01 (Bonferroni).
-inline constexpr int kChiSquareTests = 56;
+inline constexpr int kChiSquareTests = 61;
 inline constexpr double kChiSquareAlpha = 0.01 / kChiSquareTests;
 
 // The classic rule of thumb (Cochran 1954): the chi-square approximation of the multinomial
