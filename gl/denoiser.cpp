@@ -231,7 +231,7 @@ std::vector<std::string> colourWrites(const std::string& name, bool isHistory,
 }  // namespace
 
 PassDecl Denoiser::uploadPass() {
-  return {"upload", {}, {"noisy", "albedo", "unfiltered"}, [this] {
+  return {"upload", {}, {"noisy", "albedo", "unfiltered", "guide"}, [this] {
             uploadUniforms(frameIn_.reset || !historyValid_);
             upload(*frameIn_.eyes, eyeCount_);
           }};
@@ -239,8 +239,9 @@ PassDecl Denoiser::uploadPass() {
 
 PassDecl Denoiser::temporalPass(const Colour& out) {
   return {"temporal",
-          {"noisy", "gbuffer.visibility", "gbuffer.normal", "gbuffer.material", "gbuffer.motion",
-           "gbuffer.depth", "prev.geometry", "prev.aux", "prev.moments", "prev.history"},
+          {"noisy", "guide", "gbuffer.visibility", "gbuffer.normal", "gbuffer.material",
+           "gbuffer.motion", "gbuffer.depth", "prev.geometry", "prev.aux", "prev.moments",
+           "prev.history"},
           colourWrites(out.name, out.at == Lobes::History, {"geometry", "aux", "moments"}),
           [this, at = out.at] {
             const std::array<GLuint, 2> o = lobes(at);
@@ -258,7 +259,7 @@ PassDecl Denoiser::fireflyPass(const Colour& in, const Colour& out) {
 }
 
 PassDecl Denoiser::atrousPass(int iteration, bool last, const Colour& in, const Colour& out) {
-  std::vector<std::string> reads = {in.name, "geometry", "aux"};
+  std::vector<std::string> reads = {in.name, "geometry", "aux", "guide"};  // guide: where marked
   if (last) reads.insert(reads.end(), {"albedo", "unfiltered"});
   const std::vector<std::string> composited =
       last ? std::vector<std::string>{"composited"} : std::vector<std::string>{};
@@ -315,9 +316,14 @@ void Denoiser::upload(const std::array<NoisyEye, 2>& eyes, int eyeCount) {
       throw UsageError("denoiser: eye " + std::to_string(e) + " is " + std::to_string(n.width) +
                        "x" + std::to_string(n.height) + ", expected " + std::to_string(width_) +
                        "x" + std::to_string(height_));
-    const glm::vec3* data[InCount] = {n.diffuse, n.specular, n.diffuseAlbedo, n.specularAlbedo,
-                                      n.unfiltered};
+    const glm::vec3* data[InCount] = {n.diffuse,        n.specular,   n.diffuseAlbedo,
+                                      n.specularAlbedo, n.unfiltered, n.guide};
     for (int i = 0; i < InCount; ++i) {
+      if (i == InGuide && !data[i]) {
+        api::ClearTexSubImage(inputs_[i], 0, 0, 0, e, width_, height_, 1, GL_RGB, GL_FLOAT,
+                              nullptr);
+        continue;
+      }
       if (!data[i])
         throw UsageError("denoiser: an input image of eye " + std::to_string(e) + " is missing");
       api::TextureSubImage3D(inputs_[i], 0, 0, 0, e, width_, height_, 1, GL_RGB, GL_FLOAT, data[i]);
@@ -359,6 +365,7 @@ void Denoiser::temporal(const DenoiseGeometry& g, unsigned outDiffuse, unsigned 
   api::BindTextureUnit(SVGF_T_PREV_GEOMETRY, geometry_[prev]);
   api::BindTextureUnit(SVGF_T_PREV_AUX, aux_[prev]);
   api::BindTextureUnit(SVGF_T_PREV_MOMENTS, moments_[prev]);
+  api::BindTextureUnit(SVGF_T_GUIDE, inputs_[InGuide]);
   api::BindTextureUnit(SVGF_T_PREV_DIFFUSE, history_[prev][0]);
   api::BindTextureUnit(SVGF_T_PREV_SPECULAR, history_[prev][1]);
   bindImage(SVGF_I_DIFFUSE, outDiffuse, GL_RGBA16F);
@@ -392,18 +399,43 @@ void Denoiser::firefly(const unsigned in[2], const unsigned out[2]) {
   dispatch();
 }
 
+namespace {
+
+bool guided(const std::array<NoisyEye, 2>& eyes, int eyeCount) {
+  for (int e = 0; e < eyeCount; ++e)
+    if (eyes[e].guide) return true;
+  return false;
+}
+
+}  // namespace
+
+const Program& Denoiser::atrousProgram(bool specular, bool composite, bool guides) {
+  if (!guides)
+    return specular ? (composite ? atrousComposite_ : atrous_)
+                    : (composite ? atrousDiffuseComposite_ : atrousDiffuse_);
+  std::unique_ptr<Program>& p = atrousGuided_[specular][composite];
+  if (!p) {
+    std::vector<std::string> defines = {"SVGF_GUIDES 1"};
+    if (!specular) defines.push_back("SVGF_SPECULAR_DONE 1");
+    if (composite) defines.insert(defines.end(), {"SVGF_COMPOSITE 1", "SVGF_RESOLVE_FOLLOWS 1"});
+    p = std::make_unique<Program>(
+        std::vector<Program::Stage>{{GL_COMPUTE_SHADER, "svgf_atrous.comp"}}, defines);
+  }
+  return *p;
+}
+
 void Denoiser::atrous(int iteration, const unsigned in[2], const unsigned out[2]) {
   const bool last = iteration + 1 == params_.iterations;
   // Past max(1, cap) steps no pixel's lobe footprint reaches (svgf_atrous.comp).
   const bool specular = float(1 << iteration) <= std::max(1.0f, params_.specularMaxStep);
-  const Program& program = specular ? (last ? atrousComposite_ : atrous_)
-                                    : (last ? atrousDiffuseComposite_ : atrousDiffuse_);
+  const Program& program = atrousProgram(specular, last, guided(*frameIn_.eyes, eyeCount_));
   program.use();
   program.set("uStep", 1 << iteration);
   api::BindTextureUnit(SVGF_A_DIFFUSE, in[0]);
   api::BindTextureUnit(SVGF_A_SPECULAR, in[1]);
   api::BindTextureUnit(SVGF_A_GEOMETRY, geometry_[frame_ & 1]);
   api::BindTextureUnit(SVGF_A_AUX, aux_[frame_ & 1]);
+  api::BindTextureUnit(SVGF_A_GUIDE, inputs_[InGuide]);
   bindImage(SVGF_I_DIFFUSE, out[0], GL_RGBA16F);
   bindImage(SVGF_I_SPECULAR, out[1], GL_RGBA16F);
   if (last) {

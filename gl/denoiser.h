@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,11 @@ struct NoisyEye {
   const glm::vec3* diffuseAlbedo = nullptr;
   const glm::vec3* specularAlbedo = nullptr;
   const glm::vec3* unfiltered = nullptr;  // primary emission; the sky in background pixels
+  // Optional: primary surface replacement for the a-trous edge weights where a pixel looks
+  // through a smooth mirror or glass (EyeImage::guide: the seen surface's normal scaled by
+  // its instance + 1, 0 = the G-buffer's guides). Null: none anywhere (the a-trous pass
+  // then runs without the guide's reads).
+  const glm::vec3* guide = nullptr;
 };
 
 // The G-buffer textures the denoiser reads (2-layer arrays, formats as in gl/gbuffer.h).
@@ -200,7 +206,15 @@ class Denoiser {
   const PassList& passes(DenoiseMode mode) const { return passes_[size_t(mode)]; }
 
  private:
-  enum Input { InDiffuse, InSpecular, InDiffuseAlbedo, InSpecularAlbedo, InUnfiltered, InCount };
+  enum Input {
+    InDiffuse,
+    InSpecular,
+    InDiffuseAlbedo,
+    InSpecularAlbedo,
+    InUnfiltered,
+    InGuide,
+    InCount
+  };
   // Where a pair of lobe images (diffuse, specular) lives; History and PrevHistory by the
   // frame's parity.
   enum class Lobes { Noisy, History, PrevHistory, FilterA, FilterB };
@@ -240,6 +254,11 @@ class Denoiser {
   DenoiseParams params_;
   Program temporal_, firefly_, atrous_, atrousComposite_;
   Program atrousDiffuse_, atrousDiffuseComposite_;  // steps past the specular cap
+  // The four with SVGF_GUIDES (frames with replaced guides), [specular][composite], built
+  // when first needed: llvmpipe runs a branch's texture reads even where no pixel takes it,
+  // which cost the a-trous steps 1.3x in frames without a replaced guide (measured).
+  std::unique_ptr<Program> atrousGuided_[2][2];
+  const Program& atrousProgram(bool specular, bool composite, bool guided);
   Program composite_, resolve_;
   unsigned uniforms_ = 0;
   unsigned inputs_[InCount] = {};

@@ -94,6 +94,7 @@
   X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
   X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                               \
+  X(PFNGLCLEARTEXSUBIMAGEPROC, ClearTexSubImage)                         \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                           \
   X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                         \
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                               \

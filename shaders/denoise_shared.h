@@ -30,6 +30,7 @@ using ivec4 = glm::ivec4;
 #define SVGF_T_PREV_MOMENTS 9
 #define SVGF_T_PREV_DIFFUSE 10
 #define SVGF_T_PREV_SPECULAR 11
+#define SVGF_T_GUIDE 12
 // Texture units of the a-trous and compositing passes.
 #define SVGF_A_DIFFUSE 0
 #define SVGF_A_SPECULAR 1
@@ -39,6 +40,7 @@ using ivec4 = glm::ivec4;
 #define SVGF_C_SPECULAR_ALBEDO 5
 #define SVGF_C_UNFILTERED 6
 #define SVGF_C_DEPTH 7
+#define SVGF_A_GUIDE 8
 // Texture units of the resolve (temporal anti-aliasing) pass; it also writes the outputs.
 #define SVGF_R_COLOR 0
 #define SVGF_R_HISTORY 1
@@ -56,6 +58,10 @@ using ivec4 = glm::ivec4;
 #define SVGF_I_DISPLAY 6
 #define SVGF_I_DEPTH 7
 #define SVGF_I_HISTORY 0  // resolve history
+
+// The geometry record's triangle field carries this bit where the pixel's edge guides are
+// replaced (NoisyEye::guide), so the a-trous pass reads the guide texture only there.
+#define SVGF_REPLACED_GUIDE 0x80000000u
 
 // Background pixels carry this instance id in the visibility record (gbuffer_shared.h).
 #define SVGF_NO_INSTANCE 0xFFFFFFFFu

@@ -4,7 +4,16 @@
 // while the step fits the GGX lobe's footprint. With SVGF_COMPOSITE defined (the last
 // iteration) the result is also composited, saving a pass that would re-read it; with
 // SVGF_SPECULAR_DONE (steps beyond the footprint's cap) specular passes through.
-// Reads: colour + variance (RGBA16F x 2), geometry record (RGBA32UI), aux (RGBA16F).
+// Where a pixel looks through a smooth mirror or glass, the edge weights are those of the
+// surface it shows (primary surface replacement, after Zimmer et al., "Path-space Motion
+// Estimation and Decomposition for Robust Animation Filtering", EGSR 2015): that surface's
+// instance and normal, from the tracer (NoisyEye::guide). Its depth along the path has no
+// screen-space gradient to scale eq. (3) by, so depth is not tested there; a tap on the
+// other side of the mirror's silhouette (replaced on one side only), or on another
+// instance, weighs 0.
+// Reads: colour + variance (RGBA16F x 2), geometry record (RGBA32UI), aux (RGBA16F),
+// replaced guides (RGB32F) where the record's SVGF_REPLACED_GUIDE bit says so (compiled in
+// with SVGF_GUIDES, for frames that have any: gl/denoiser.h).
 // Writes: colour + filtered variance (RGBA16F x 2) [+ the compositing outputs].
 #include "svgf_common.glsl"
 #ifdef SVGF_COMPOSITE
@@ -17,6 +26,7 @@ layout(binding = SVGF_A_DIFFUSE) uniform sampler2DArray aDiffuse;
 layout(binding = SVGF_A_SPECULAR) uniform sampler2DArray aSpecular;
 layout(binding = SVGF_A_GEOMETRY) uniform usampler2DArray aGeometry;
 layout(binding = SVGF_A_AUX) uniform sampler2DArray aAux;
+layout(binding = SVGF_A_GUIDE) uniform sampler2DArray aGuide;
 layout(rgba16f, binding = SVGF_I_DIFFUSE) writeonly uniform image2DArray oDiffuse;
 layout(rgba16f, binding = SVGF_I_SPECULAR) writeonly uniform image2DArray oSpecular;
 
@@ -39,6 +49,15 @@ vec2 prefilteredVariance(ivec3 p) {
   return sum / wsum;
 }
 
+// The edge weight between two pixels with replaced guides: the seen surfaces' normal weight
+// (eq. 4) when both show the same instance, else 0. A guide is the normal scaled by
+// instance + 1 (its length). Between a replaced pixel and another the weight is 0.
+float replacedLog2Weight(vec3 guide, vec3 guideQ) {
+  float id = length(guide), idQ = length(guideQ);
+  if (abs(id - idQ) >= 0.5) return -1e30;
+  return normalLog2Weight(guide / id, guideQ / idQ);
+}
+
 void main() {
   ivec3 p = ivec3(gl_GlobalInvocationID);
   if (!inside(p.xy)) return;
@@ -48,6 +67,10 @@ void main() {
   if (g.instance != SVGF_NO_INSTANCE) {
     vec4 aux = texelFetch(aAux, p, 0);
     vec2 gradient = aux.yz * g.depth;
+#ifdef SVGF_GUIDES
+    bool replaced = (g.triangle & SVGF_REPLACED_GUIDE) != 0u;
+    vec3 guide = replaced ? texelFetch(aGuide, p, 0).rgb : vec3(0.0);
+#endif
     // Specular lobe footprint: filter while the step is within 'footprint x GGX alpha'
     // pixels (alpha = roughness^2), at most the cap; mirrors keep their reflections (always
     // >= step 1). gl/denoiser.h gives the measurements behind both.
@@ -77,6 +100,13 @@ void main() {
         if (gq.instance == SVGF_NO_INSTANCE) continue;
         float geometry = depthLog2Weight(g.depth, gq.depth, gradient, off) +
                          normalLog2Weight(g.normal, gq.normal);
+#ifdef SVGF_GUIDES
+        bool replacedQ = (gq.triangle & SVGF_REPLACED_GUIDE) != 0u;
+        if (replaced || replacedQ)
+          geometry = replaced && replacedQ
+                         ? replacedLog2Weight(guide, texelFetch(aGuide, q, 0).rgb)
+                         : -1e30;
+#endif
         float h2 = h[abs(x)] * h[abs(y)];
         vec4 cd = texelFetch(aDiffuse, q, 0);
         float wd = h2 * exp2(geometry + luminanceLog2Weight(ld, luminance(cd.rgb), phi.x));

@@ -1,7 +1,8 @@
 // SVGF temporal accumulation (§4.1) and variance estimation (§4.2), both eyes in one
 // dispatch (z = layer = eye; each layer re-projects into its own history layer).
 // Reads: noisy demodulated diffuse/specular (RGB32F), the G-buffer (visibility, normal,
-// material, motion, depth), last frame's geometry record, aux, moments and colour history.
+// material, motion, depth), last frame's geometry record, aux, moments and colour history,
+// whether the guide is replaced (SVGF_REPLACED_GUIDE).
 // Writes: accumulated colour + variance (RGBA16F x 2), this frame's geometry record
 // (RGBA32UI), aux (RGBA16F: history length, relative depth gradient, roughness), moments
 // (RGBA32F: diffuse mu1 mu2, specular mu1 mu2; 32-bit because mu2 of a bright sample
@@ -22,6 +23,7 @@ layout(binding = SVGF_T_PREV_AUX) uniform sampler2DArray prevAux;
 layout(binding = SVGF_T_PREV_MOMENTS) uniform sampler2DArray prevMoments;
 layout(binding = SVGF_T_PREV_DIFFUSE) uniform sampler2DArray prevDiffuse;
 layout(binding = SVGF_T_PREV_SPECULAR) uniform sampler2DArray prevSpecular;
+layout(binding = SVGF_T_GUIDE) uniform sampler2DArray inGuide;
 
 layout(rgba16f, binding = SVGF_I_DIFFUSE) writeonly uniform image2DArray oDiffuse;
 layout(rgba16f, binding = SVGF_I_SPECULAR) writeonly uniform image2DArray oSpecular;
@@ -80,7 +82,8 @@ bool consistent(Current c, ivec3 q) {
   if (!inside(q.xy)) return false;
   Geometry g = unpackGeometry(texelFetch(prevGeometry, q, 0));
   if (g.instance != c.geo.instance) return false;
-  if (params.reject.w > 0.5 && g.triangle != c.geo.triangle) return false;
+  if (params.reject.w > 0.5 && ((g.triangle ^ c.geo.triangle) & ~SVGF_REPLACED_GUIDE) != 0u)
+    return false;
   // Depth as 1 / reversed-Z, i.e. view distance in units of the near plane.
   float z = 1.0 / c.geo.depth, zq = 1.0 / max(g.depth, 1e-30);
   float slope = abs(c.relGradient.x) + abs(c.relGradient.y) + params.reject.y;
@@ -181,7 +184,8 @@ void main() {
   vec3 n = normalize(texelFetch(gNormal, p, 0).xyz);
   bool background = vis.x == SVGF_NO_INSTANCE;
   if (background) n = vec3(0.0, 0.0, 1.0);
-  imageStore(oGeometry, p, uvec4(vis.x, vis.y, floatBitsToUint(d), packNormal(n)));
+  uint replaced = texelFetch(inGuide, p, 0).rgb != vec3(0.0) ? SVGF_REPLACED_GUIDE : 0u;
+  imageStore(oGeometry, p, uvec4(vis.x, vis.y | replaced, floatBitsToUint(d), packNormal(n)));
   if (background) {
     imageStore(oDiffuse, p, vec4(0.0));
     imageStore(oSpecular, p, vec4(0.0));

@@ -33,7 +33,7 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, uint64_t& rays,
         continue;
       }
       const PathStart& start = starts_[size_t(s.start)];
-      addPath(e, start.hit, -start.wo, results_[size_t(s.start)]);
+      addPath(e, start.hit, results_[size_t(s.start)]);
     }
     storePixel(img, p.index, e);
     rays += e.rays;

@@ -24,10 +24,17 @@ namespace photovr {
 struct PathState {
   SurfaceHit hit;  // the current vertex
   glm::vec3 wo{0.0f};
-  glm::vec3 beta{1.0f};   // throughput up to the current vertex
-  glm::vec3 share{1.0f};  // diffuse fraction of the first bounce (denoiser lobes)
+  glm::vec3 beta{1.0f};  // throughput up to the current vertex
+  // The denoiser's lobes are split at the path's denoiser surface: its first vertex, or,
+  // when that is a smooth mirror or glass with no diffuse lobe (seesThrough), the first
+  // vertex beyond it that is not. Light gathered before it is specular; at it, NEE splits
+  // by the lobes' values and the bounce by 'share', its diffuse fraction, which every later
+  // vertex's light keeps. So what a glass ball shows is demodulated and filtered as the
+  // surfaces it shows, not as the glass (docs/ARCHITECTURE.md, "Denoiser").
+  glm::vec3 share{0.0f};
   PathSampler sampler;
   uint32_t depth = 0;
+  bool split = false;  // the denoiser surface is the current vertex or behind the path
   bool albedoSet = false;
   // The bounce ray shadeVertex chose, for advancePath.
   glm::vec3 wi{0.0f};

@@ -33,11 +33,19 @@ bool showsWhatIsBeyond(const BsdfParams& b) {
   return b.roughness < kMirrorRoughness && (b.metallic >= 1.0f || b.transmission > 0.0f);
 }
 
+// ... and one the denoiser looks through as well: no diffuse lobe and no sheen, so all it
+// adds itself is specular (PathState::share).
+bool seesThrough(const BsdfParams& b) {
+  return showsWhatIsBeyond(b) && diffuseAlbedo(b) == glm::vec3(0.0f) &&
+         b.sheenColor == glm::vec3(0.0f);
+}
+
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
 // lights with area (Veach 1997 sec. 9.2, power heuristic): the shadow ray and what it adds
-// unblocked, weighted by the throughput and lobe split as they are at this vertex.
+// unblocked, weighted by the throughput and lobe split as they are at this vertex: by the
+// lobes themselves at the denoiser surface ('splitsHere'), by the path's share elsewhere.
 bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame,
-                 const BsdfVertex& bsdf, Sampler& sampler, ShadowRay& shadow) {
+                 const BsdfVertex& bsdf, bool splitsHere, Sampler& sampler, ShadowRay& shadow) {
   if (ctx.lights.empty()) return false;
   const float uSelect = sampler.next();
   const LightSample ls = ctx.lights.sample(p.hit.position, uSelect, sampler.next2());
@@ -62,9 +70,9 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   shadow.ray = BatchRay::make(origin, shadowDir, 0.0f, tfar);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
   const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
-  if (p.depth == 0) {
-    shadow.diffuse = f.diffuse * scale;
-    shadow.specular = f.specular * scale;
+  if (splitsHere) {
+    shadow.diffuse = p.beta * (f.diffuse * scale);  // beta is 1 at the start
+    shadow.specular = p.beta * (f.specular * scale);
   } else {
     const glm::vec3 c = p.beta * (f.diffuse * scale + f.specular * scale);
     shadow.diffuse = c * p.share;
@@ -189,10 +197,18 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
   }
+  if (p.depth == 0)
+    result.specularAlbedo = specularAlbedo(p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
+  const bool splitsHere = !p.split && !seesThrough(p.hit.bsdf);
+  if (splitsHere) {
+    p.split = true;
+    result.diffuseAlbedo = p.beta * diffuseAlbedo(p.hit.bsdf);
+    if (p.depth > 0) result.guide = p.hit.shadingNormal * float(p.hit.instance + 1);
+  }
   const Frame frame = Frame::fromZ(p.hit.shadingNormal);
   const BsdfVertex bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
   VertexRays rays;
-  rays.shadow = directLight(ctx, p, frame, bsdf, sampler, shadow);
+  rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, sampler, shadow);
   result.rays += rays.shadow;
   if (p.reuse) {
     reuseBounce(ctx, p, frame, bsdf, result);
@@ -202,7 +218,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
   if (!sameSide(wi, p.hit, bs.wi)) return rays;
-  if (p.depth == 0) p.share = diffuseShare(bs);
+  if (splitsHere) p.share = diffuseShare(bs);
   if (p.depth == 0 && p.record) {
     p.record->sampled = true;
     p.record->dir = wi;

@@ -40,11 +40,20 @@ struct TraceContext {
 
 struct PathResult {
   glm::vec3 radiance{0.0f};  // reflected radiance towards wo (emission of the start excluded)
-  glm::vec3 diffuse{0.0f};   // the part reflected by the start's diffuse lobe ...
-  glm::vec3 specular{0.0f};  // ... and by its specular lobe (radiance = diffuse + specular)
-  glm::vec3 albedo{0.0f};    // base colour of the first non-mirror-like vertex (denoiser AOV)
-  uint32_t rejected = 0;     // samples dropped because they were NaN/Inf
-  uint32_t rays = 0;         // bounce and shadow rays traced
+  // The denoiser's lobes (radiance = diffuse + specular): the part reflected by the diffuse
+  // lobe of the path's denoiser surface (the start, or where a path through a smooth mirror
+  // or glass start first meets another surface: trace/path_stages.h) ...
+  glm::vec3 diffuse{0.0f};
+  glm::vec3 specular{0.0f};  // ... and the rest: specular lobes, what the mirror or glass adds
+  // Their demodulation albedos: the denoiser surface's diffuse albedo times the throughput
+  // up to it (0 when the path found none), and the start's split-sum specular albedo.
+  glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};
+  glm::vec3 albedo{0.0f};  // base colour of the first non-mirror-like vertex (denoiser AOV)
+  // The denoiser surface's guide when it is not the start (primary surface replacement):
+  // its shading normal scaled by its instance + 1; 0 when the start is the denoiser surface.
+  glm::vec3 guide{0.0f};
+  uint32_t rejected = 0;  // samples dropped because they were NaN/Inf
+  uint32_t rays = 0;      // bounce and shadow rays traced
 };
 
 // Radiance leaving 'hit' towards 'wo' (unit, pointing away from the surface), from every
@@ -63,6 +72,9 @@ struct EyeImage {
   // Denoiser inputs (filled by the hybrid; empty where a renderer does not produce them):
   // each lobe's mean radiance divided by its albedo, and those albedos.
   std::vector<glm::vec3> diffuse, specular, diffuseAlbedo, specularAlbedo;
+  // ... and the edge-stopping guide of pixels whose first path looked through a smooth
+  // mirror or glass (PathResult::guide; 0 elsewhere: the G-buffer's guides hold there).
+  std::vector<glm::vec3> guide;
   uint64_t rays = 0;             // rays traced (primary, bounce, shadow)
   uint64_t paths = 0;            // paths continued from a primary hit ...
   uint64_t reusedPaths = 0;      // ... of which reused the left eye's (trace/stereo_reuse.h)

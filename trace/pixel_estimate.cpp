@@ -1,17 +1,15 @@
 #include "trace/pixel_estimate.h"
 
-#include "trace/bsdf.h"
-
 namespace photovr {
 
-void addPath(PixelEstimate& e, const SurfaceHit& hit, const glm::vec3& dir, const PathResult& r) {
+void addPath(PixelEstimate& e, const SurfaceHit& hit, const PathResult& r) {
   e.diffuse += r.diffuse;
   e.specular += r.specular;
   e.albedo += r.albedo;
   e.emitted += hit.emission;
-  e.diffuseAlbedo += glm::max(diffuseAlbedo(hit.bsdf), glm::vec3(kMinDemodulationAlbedo));
-  e.specularAlbedo += glm::max(specularAlbedo(hit.bsdf, glm::dot(hit.shadingNormal, -dir)),
-                               glm::vec3(kMinDemodulationAlbedo));
+  e.diffuseAlbedo += glm::max(r.diffuseAlbedo, glm::vec3(kMinDemodulationAlbedo));
+  e.specularAlbedo += glm::max(r.specularAlbedo, glm::vec3(kMinDemodulationAlbedo));
+  if (e.samples == 0) e.guide = r.guide;
   e.rays += r.rays;
   e.rejected += r.rejected;
   ++e.samples;
@@ -31,6 +29,7 @@ void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
   img.diffuseAlbedo[i] = dAlb;
   img.specularAlbedo[i] = sAlb;
   img.albedo[i] = e.albedo * invHits;
+  img.guide[i] = e.guide;
 }
 
 void allocateEyeImage(EyeImage& img, int w, int h) {
@@ -38,7 +37,7 @@ void allocateEyeImage(EyeImage& img, int w, int h) {
   img.width = w;
   img.height = h;
   for (auto* v : {&img.color, &img.albedo, &img.normal, &img.diffuse, &img.specular,
-                  &img.diffuseAlbedo, &img.specularAlbedo})
+                  &img.diffuseAlbedo, &img.specularAlbedo, &img.guide})
     v->assign(n, glm::vec3(0.0f));
   img.depth.assign(n, 0.0f);
   img.samples.assign(n, 0);

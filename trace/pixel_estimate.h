@@ -14,6 +14,7 @@ struct PixelEstimate {
   glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
   glm::vec3 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
   glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
+  glm::vec3 guide{0.0f};                                // the first path's PathResult::guide
   uint32_t samples = 0;                                 // paths continued from a hit
   uint32_t misses = 0;                                  // primary rays that left the scene
   uint64_t rays = 0, rejected = 0;
@@ -23,8 +24,8 @@ struct PixelEstimate {
 // so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
 constexpr float kMinDemodulationAlbedo = 1e-3f;
 
-// One path continued from 'hit' (its result 'r'), seen along the primary direction 'dir'.
-void addPath(PixelEstimate& e, const SurfaceHit& hit, const glm::vec3& dir, const PathResult& r);
+// One path continued from 'hit' (its result 'r', which carries its demodulation albedos).
+void addPath(PixelEstimate& e, const SurfaceHit& hit, const PathResult& r);
 
 // Writes colour (the mean over every sample, emission and environment included), the
 // demodulated lobes and their albedos (means over the samples that hit), the albedo AOV and
