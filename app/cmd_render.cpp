@@ -108,6 +108,7 @@ RenderRequest parseRenderRequest(const Args& args) {
   createOutputFolder(r.outDir);
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
+  warnAboutScene(r.scene);
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
   if (r.sampling != SampleMapKind::Uniform && (r.mode != RenderMode::Hybrid || !r.view.stereo))

@@ -131,6 +131,7 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("--screenshot: needs --frames N (it saves the last refresh)");
   c.scene = loadSceneSpec(o.text("--scene", "atrium"));
   applyEnvironmentOption(c.scene, o.text("--env", ""));
+  warnAboutScene(c.scene);
   c.view = resolveView(c.scene, o);
   if (!c.view.stereo || o.has("--fovy"))
     throw UsageError("view: --eyes and --fovy are not headset options (the eyes are the DK2's)");

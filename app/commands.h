@@ -23,6 +23,9 @@ int runView(const Args& args);
 // A built-in scene name or a .gltf/.glb path; --env FILE replaces the environment.
 Scene loadSceneSpec(const std::string& spec);
 void applyEnvironmentOption(Scene& scene, const std::string& envPath);
+// The scene's own warnings (core/scene_info.h: no light, meshes not drawn, ...) on stderr,
+// for the commands that render it, once the environment option is applied.
+void warnAboutScene(const Scene& scene);
 
 bool wantsHelp(const Args& args);
 

@@ -6,6 +6,7 @@
 #include "core/environment_io.h"
 #include "core/error.h"
 #include "core/gltf_loader.h"
+#include "core/scene_info.h"
 
 namespace photovr::app {
 
@@ -27,6 +28,11 @@ Scene loadSceneSpec(const std::string& spec) {
   Scene scene = loadGltf(spec);
   for (const std::string& w : scene.warnings) std::cerr << "photovr: warning: " << w << "\n";
   return scene;
+}
+
+void warnAboutScene(const Scene& scene) {
+  for (const std::string& w : analyzeScene(scene).warnings)
+    std::cerr << "photovr: warning: " << w << "\n";
 }
 
 void applyEnvironmentOption(Scene& scene, const std::string& envPath) {

@@ -38,6 +38,7 @@ const Material* materialOf(const Scene& scene, const Mesh& mesh) {
 
 void addMaterialFlags(SceneFeatures& f, const Material& m, size_t triangles) {
   if (m.isEmissive()) f.emissiveTriangles += triangles;
+  f.unlitSurfaces |= m.unlit && glm::vec3(m.baseColorFactor) != glm::vec3(0.0f);
   f.alphaMask |= m.alphaMode == AlphaMode::Mask;
   f.alphaBlend |= m.alphaMode == AlphaMode::Blend;
   f.doubleSided |= m.doubleSided;
@@ -68,7 +69,7 @@ void addWarnings(SceneFeatures& f, const Scene& scene, size_t badInstances, size
     f.warnings.push_back(count(badInstances) + " instances name a mesh that does not exist");
   if (unusedMeshes > 0)
     f.warnings.push_back(count(unusedMeshes) + " meshes are used by no instance (not drawn)");
-  if (!f.punctualLights && !f.areaLights && !f.environment)
+  if (!f.punctualLights && !f.areaLights && !f.environment && !f.unlitSurfaces)
     f.warnings.push_back("no light, emitter or environment: the image will be black");
   const Environment& env = scene.environment;
   if (env.type == Environment::Type::Map &&

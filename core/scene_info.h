@@ -15,6 +15,7 @@ struct SceneFeatures {
   bool punctualLights = false;  // any KHR punctual light: shadow rays towards them
   bool areaLights = false;      // any instanced triangle with an emissive material
   bool environment = false;     // misses return sky/map/constant radiance (else black)
+  bool unlitSurfaces = false;   // an instanced KHR_materials_unlit surface shows its colour
   bool alphaMask = false;       // a MASK material is instanced: any-hit alpha test
   bool alphaBlend = false;      // a BLEND material is instanced
   bool doubleSided = false;     // a double-sided material is instanced

@@ -132,6 +132,25 @@ TEST(Cli, ExportedSceneLoadsBackWithTheSameCounts) {
   EXPECT_NE(b.output.find("textures"), std::string::npos);
 }
 
+// Issue 23: a scene with nothing that emits renders black; render says so before it does.
+TEST(Cli, RenderWarnsWhenNothingLightsTheScene) {
+  const std::string dir = tempDir("unlit");
+  const std::string gltf = dir + "/dark.gltf";
+  std::ofstream(gltf) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAADAAACAPwAAAAAAAADAAAAAAAAAgD8AAADA"}],
+"bufferViews":[{"buffer":0,"byteLength":36}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-2],"max":[1,1,-2]}]})";
+  const std::string args = " --mode pt --eyes mono --width 8 --height 8 --out " + dir + "/out";
+  const auto dark = runPhotovr("render --scene " + gltf + args);
+  ASSERT_EQ(dark.status, 0) << dark.output;
+  EXPECT_NE(dark.output.find("warning: no light, emitter or environment"), std::string::npos)
+      << dark.output;
+  const auto lit = runPhotovr("render --scene cornell" + args);
+  ASSERT_EQ(lit.status, 0) << lit.output;
+  EXPECT_EQ(lit.output.find("warning"), std::string::npos) << lit.output;
+}
+
 TEST(Cli, RenderWritesEveryImageForBothEyes) {
   const std::string dir = tempDir("render");
   const auto r = runPhotovr(

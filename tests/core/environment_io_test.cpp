@@ -4,6 +4,7 @@
 
 #include "tests/core/test_dir.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,8 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+
+#include <OpenImageIO/imageio.h>
 
 namespace photovr {
 namespace {
@@ -113,13 +116,66 @@ TEST(EnvironmentIo, NonTwoToOneAspectIsAWarning) {
 TEST(EnvironmentIo, NegativeOrNonFinitePixelIsAnError) {
   const fs::path dir = testDir();
   ImageF bad = sky();
-  bad.at(1, 0)[2] = -0.5f;
+  // -1000 beside a blue of 2500 in the same 8x8 block: 40 %, far beyond a codec's error.
+  bad.at(1, 0)[2] = -1000.0f;
   writeImage((dir / "negative.exr").string(), bad);
   EXPECT_NE(loadError((dir / "negative.exr").string()).find("pixel (1, 0)"), std::string::npos);
   bad = sky();
   bad.at(3, 1)[0] = std::numeric_limits<float>::infinity();
   writeImage((dir / "inf.exr").string(), bad);
   EXPECT_NE(loadError((dir / "inf.exr").string()).find("pixel (3, 1)"), std::string::npos);
+}
+
+// A map clamped to 0 on the ground, dim noise there, a bright sky and a sun: what lossy EXR
+// codecs leave negative in it (issue 23: a DWAB panorama was refused over -0.000011).
+ImageF clampedPanorama() {
+  const int w = 256, h = 128;
+  ImageF image(w, h, 3);
+  std::mt19937 rng(23);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float v = 0.5f + 0.4f * std::sin(0.05f * float(x)) * float(y) / float(h);
+      if (y >= h / 2) v = rng() % 3 == 0 ? 0.0f : float(rng() % 1000) * 1e-6f;
+      const float sun = std::hypot(float(x) - 150.0f, float(y) - 30.0f) < 3.0f ? 2e4f : 0.0f;
+      float* p = image.at(x, y);
+      p[0] = v + sun, p[1] = 0.8f * v + sun, p[2] = 1.2f * v + 0.9f * sun;
+    }
+  return image;
+}
+
+TEST(EnvironmentIo, LossyCodecNegativesAreClampedWithOneWarning) {
+  const ImageF image = clampedPanorama();
+  for (const char* codec : {"dwaa", "dwab", "b44"}) {
+    const std::string path = (testDir() / (std::string(codec) + ".exr")).string();
+    {
+      auto out = OIIO::ImageOutput::create(path);
+      OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::HALF);
+      spec.attribute("compression", codec);
+      ASSERT_TRUE(out && out->open(path, spec));
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, image.data.data()));
+      out->close();
+    }
+    const ImageF decoded = readImageF(path);
+    size_t negatives = 0;
+    float mostNegative = 0.0f;
+    for (float v : decoded.data)
+      if (v < 0.0f) ++negatives, mostNegative = std::min(mostNegative, v);
+    ASSERT_GT(negatives, 0u) << codec << ": the codec left no negative to test";
+    std::string warning;
+    const Environment env = loadEnvironment(path, &warning);
+    EXPECT_NE(warning.find("clamped " + std::to_string(negatives) + " small negative values"),
+              std::string::npos)
+        << codec << ": " << warning;
+    char most[32];
+    std::snprintf(most, sizeof most, "most negative %.3g", double(mostNegative));
+    EXPECT_NE(warning.find(most), std::string::npos) << codec << ": " << warning;
+    EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
+    // Everything else as decoded: the clamp only lifts the negatives to 0.
+    for (int y = 0; y < env.height; ++y)
+      for (int x = 0; x < env.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(env.pixels[size_t(y) * env.width + x][c], std::max(decoded.at(x, y)[c], 0.0f));
+  }
 }
 
 TEST(EnvironmentIo, MissingFileIsAnError) {
