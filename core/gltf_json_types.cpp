@@ -277,4 +277,15 @@ void checkGltfJsonTypes(const uint8_t* json, size_t size, const std::string& pat
   checkObject(root, kRoot, "", path);
 }
 
+std::vector<std::string> requiredExtensions(const uint8_t* json, size_t size) {
+  const Json root = Json::parse(json, json + size, nullptr, false);
+  std::vector<std::string> names;
+  if (root.is_discarded() || !root.is_object()) return names;
+  const auto it = root.find("extensionsRequired");
+  if (it == root.end() || !it->is_array()) return names;
+  for (const Json& name : *it)
+    if (name.is_string()) names.push_back(name.get<std::string>());
+  return names;
+}
+
 }  // namespace photovr

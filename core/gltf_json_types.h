@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace photovr {
 
@@ -17,5 +18,11 @@ namespace photovr {
 // KHR_texture_transform). Members photovr does not read
 // are not checked; JSON that does not parse is left to tinygltf's own message.
 void checkGltfJsonTypes(const uint8_t* json, size_t size, const std::string& path);
+
+// The names listed in the root's "extensionsRequired" (glTF 2.0 §3.12), read before
+// anything else so that a file needing an extension photovr lacks fails with that, not
+// with what tinygltf makes of data the extension encodes. Non-strings, a member of another
+// type, and JSON that does not parse give nothing here (left to the checks above).
+std::vector<std::string> requiredExtensions(const uint8_t* json, size_t size);
 
 }  // namespace photovr

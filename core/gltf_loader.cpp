@@ -12,8 +12,10 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -21,6 +23,7 @@
 
 #include "core/error.h"
 #include "core/files.h"
+#include "core/gltf_draco.h"
 #include "core/gltf_json_types.h"
 #include "core/image_io.h"
 #include "core/mesh_util.h"
@@ -37,10 +40,17 @@ constexpr size_t kMaxZeroAccessorCount = size_t(1) << 26;
 constexpr int kTextureNotLoaded = -2;
 
 const std::vector<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_materials_clearcoat", "KHR_materials_emissive_strength",
-    "KHR_materials_ior",          "KHR_materials_sheen",     "KHR_materials_specular",
-    "KHR_materials_transmission", "KHR_materials_unlit",     "KHR_materials_volume",
+    "KHR_draco_mesh_compression", "KHR_lights_punctual",
+    "KHR_materials_clearcoat",    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",          "KHR_materials_sheen",
+    "KHR_materials_specular",     "KHR_materials_transmission",
+    "KHR_materials_unlit",        "KHR_materials_volume",
     "KHR_texture_transform"};
+
+bool supported(const std::string& extension) {
+  return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
+         kSupportedExtensions.end();
+}
 
 // ---------------------------------------------------------------------------------------
 // Reading and parsing the file
@@ -207,6 +217,58 @@ std::string baseDirOf(const std::string& path) {
   return parent.empty() ? "." : parent.string();
 }
 
+// Why a required extension is not supported, where there is more to say than its name.
+std::string whyUnsupported(const std::string& name) {
+  if (name == "KHR_texture_basisu")
+    return " (Basis Universal textures: Debian 12 ships no Basis decoder)";
+  if (name == "EXT_meshopt_compression") return " (meshopt-compressed buffers: not decoded yet)";
+  return "";
+}
+
+// glTF 2.0 §3.12: a loader must refuse a file that requires an extension it lacks; checked
+// on the JSON before anything else, so it is the first and only error.
+void checkRequiredExtensions(const uint8_t* json, size_t size, const std::string& path) {
+  std::string list;
+  for (const std::string& name : requiredExtensions(json, size))
+    if (!supported(name)) list += (list.empty() ? "" : ", ") + name + whyUnsupported(name);
+  if (!list.empty()) throw InputError(path, "requires unsupported extension(s) " + list);
+}
+
+// The JSON's own checks, before tinygltf sees it.
+void checkJson(const uint8_t* json, size_t size, const std::string& path) {
+  checkJsonDepth(json, size, path);
+  checkRequiredExtensions(json, size, path);
+  checkGltfJsonTypes(json, size, path);
+}
+
+// The JSON with Draco primitives' index accessors pointed at a buffer view
+// (withDracoIndexViews), or empty when the file has none (the common case skips parsing).
+std::string withDracoViews(const uint8_t* json, size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(json), size);
+  if (text.find("KHR_draco_mesh_compression") == std::string_view::npos) return "";
+  return withDracoIndexViews(json, size);
+}
+
+// A GLB with its JSON chunk replaced by 'json' (padded with spaces to 4 bytes, glTF 2.0
+// §4.4.3.1), the rest as it was; 'glb' itself when 'json' is empty.
+std::vector<uint8_t> withJsonChunk(const std::vector<uint8_t>& glb, std::string json) {
+  if (json.empty()) return glb;
+  while (json.size() % 4 != 0) json.push_back(' ');
+  const size_t oldChunk = 8 + size_t(readU32(glb, 12));
+  std::vector<uint8_t> out(glb.begin(), glb.begin() + 12);
+  auto putU32 = [&](uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
+  };
+  putU32(uint32_t(json.size()));
+  putU32(0x4E4F534Au);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  out.insert(out.end(), glb.begin() + std::ptrdiff_t(std::min(12 + oldChunk, glb.size())),
+             glb.end());
+  const uint32_t total = uint32_t(out.size());
+  for (int k = 0; k < 4; ++k) out[8 + size_t(k)] = uint8_t(total >> (8 * k));
+  return out;
+}
+
 tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
                      std::vector<std::string>& warnings) {
   tg::TinyGLTF loader;
@@ -215,19 +277,21 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
   tg::Model model;
   std::string err, warn;
   const std::string baseDir = baseDirOf(path);
-  const unsigned size = unsigned(bytes.size());
   bool ok;
   if (isGlb(bytes)) {
     checkGlbLayout(bytes, path);
     const size_t jsonSize = std::min<size_t>(readU32(bytes, 12), bytes.size() - 20);
-    checkJsonDepth(bytes.data() + 20, jsonSize, path);
-    checkGltfJsonTypes(bytes.data() + 20, jsonSize, path);
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, baseDir);
+    checkJson(bytes.data() + 20, jsonSize, path);
+    const std::vector<uint8_t> glb =
+        withJsonChunk(bytes, withDracoViews(bytes.data() + 20, jsonSize));
+    ok =
+        loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()), baseDir);
   } else {
-    checkJsonDepth(bytes.data(), bytes.size(), path);
-    checkGltfJsonTypes(bytes.data(), bytes.size(), path);
-    const char* text = reinterpret_cast<const char*>(bytes.data());
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, text, size, baseDir);
+    checkJson(bytes.data(), bytes.size(), path);
+    std::string text = withDracoViews(bytes.data(), bytes.size());
+    if (text.empty()) text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()),
+                                    baseDir);
   }
   if (!ok) throw InputError(path, describeParseFailure(err, warn));
   forwardWarnings(path, warn, warnings);
@@ -236,23 +300,15 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
 
 std::string unsupportedIn(const std::vector<std::string>& names) {
   std::string list;
-  for (const std::string& name : names) {
-    if (std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), name) !=
-        kSupportedExtensions.end())
-      continue;
-    list += (list.empty() ? "" : ", ") + name;
-  }
+  for (const std::string& name : names)
+    if (!supported(name)) list += (list.empty() ? "" : ", ") + name;
   return list;
 }
 
-// glTF 2.0 §3.12: a loader must refuse a file that requires an extension it lacks.
+// Lists what the file uses (required ones were checked on the JSON: checkJson).
 void checkExtensions(const tg::Model& model, const std::string& path,
                      std::vector<std::string>& warnings, std::vector<Scene::Extension>& used) {
-  for (const std::string& name : model.extensionsUsed)
-    used.push_back({name, std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(),
-                                    name) != kSupportedExtensions.end()});
-  if (const std::string required = unsupportedIn(model.extensionsRequired); !required.empty())
-    throw InputError(path, "requires unsupported extension(s) " + required);
+  for (const std::string& name : model.extensionsUsed) used.push_back({name, supported(name)});
   if (const std::string used = unsupportedIn(model.extensionsUsed); !used.empty())
     warnings.push_back(path + ": ignores unsupported extension(s) " + used);
 }
@@ -896,6 +952,33 @@ void finishShading(Loader& ld, Mesh& mesh) {
   if (material.normalTexture.valid() && mesh.tangents.empty()) computeTangents(mesh);
 }
 
+// KHR_draco_mesh_compression: the primitive's attributes and triangle list from its Draco
+// bitstream (core/gltf_draco.h); the buffer view's range was checked by checkBufferViews.
+std::vector<uint32_t> readDracoPrimitive(const Loader& ld, const tg::Value& ext, Mesh& mesh,
+                                         const std::string& where) {
+  const std::string what = where + " KHR_draco_mesh_compression";
+  const tg::Value& view = ext.Get("bufferView");
+  if (!view.IsInt() || !inRange(view.GetNumberAsInt(), ld.model.bufferViews))
+    ld.fail(what + ": bufferView missing or out of range");
+  std::map<std::string, int> ids;
+  const tg::Value& attributes = ext.Get("attributes");
+  if (!attributes.IsObject()) ld.fail(what + ": attributes missing");
+  for (const std::string& name : attributes.Keys())
+    if (attributes.Get(name).IsInt()) ids[name] = attributes.Get(name).GetNumberAsInt();
+  if (!ids.count("POSITION")) ld.fail(what + ": has no POSITION attribute");
+  const tg::BufferView& bv = ld.model.bufferViews[size_t(view.GetNumberAsInt())];
+  const uint8_t* bytes = ld.model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset;
+  DracoGeometry g;
+  std::string problem;
+  if (!decodeDraco(bytes, bv.byteLength, ids, g, problem)) ld.fail(what + ": " + problem);
+  mesh.positions = std::move(g.positions);
+  mesh.normals = std::move(g.normals);
+  mesh.tangents = std::move(g.tangents);
+  mesh.uv0 = std::move(g.uv0);
+  mesh.uv1 = std::move(g.uv1);
+  return g.indices;
+}
+
 std::string primitiveName(const tg::Mesh& gm, int meshIndex, size_t primitive) {
   std::string name = gm.name.empty() ? "mesh#" + std::to_string(meshIndex) : gm.name;
   if (gm.primitives.size() > 1) name += "/" + std::to_string(primitive);
@@ -915,10 +998,16 @@ std::optional<Mesh> convertPrimitive(Loader& ld, int meshIndex, size_t p) {
             " (points or lines) skipped, only triangles are rendered");
     return std::nullopt;
   }
-  readAttributes(ld, prim, mesh, where);
-  std::vector<uint32_t> indices(mesh.positions.size());
-  for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
-  if (prim.indices >= 0) indices = readIndices(ld, prim.indices, where + " indices");
+  std::vector<uint32_t> indices;
+  if (const auto draco = prim.extensions.find("KHR_draco_mesh_compression");
+      draco != prim.extensions.end()) {
+    indices = readDracoPrimitive(ld, draco->second, mesh, where);
+  } else {
+    readAttributes(ld, prim, mesh, where);
+    indices.resize(mesh.positions.size());
+    for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
+    if (prim.indices >= 0) indices = readIndices(ld, prim.indices, where + " indices");
+  }
   mesh.indices = toTriangleList(indices, mode);
   mesh.material = materialIndex(ld, prim.material, where);
   validateMesh(mesh, ld.path);

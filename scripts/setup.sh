@@ -12,6 +12,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev
   libtinygltf-dev libstb-dev
   nlohmann-json3-dev  # glTF member types, checked before tinygltf drops a wrong one
+  libdraco-dev  # KHR_draco_mesh_compression meshes (decoder, and the encoder the tests use)
   libopenimageio-dev openimageio-tools
   libhidapi-dev
   libimgui-dev
