@@ -50,7 +50,8 @@ const char* const kRenderHelp =
     "                         mean is below E (static view; default 0 = render every frame)\n"
     "  --no-skip LIST         turn off skips of work the scene does not need, to measure\n"
     "                         them: all, or any of punctual-lights, area-lights,\n"
-    "                         environment, any-hit, refit, sky-pixels (see photovr info)\n"
+    "                         environment, any-hit, refit, sky-pixels,\n"
+    "                         dark-emitters (see photovr info)\n"
     "  --backend B            egl (default, falls back to osmesa), osmesa, glfw\n"
     "  --out DIR              output folder (default out/<scene>)\n";
 

@@ -110,6 +110,11 @@ bool applies(const Scene& scene, const std::string& skip) {
       return m.doubleSided && m.alphaMode != AlphaMode::Mask;
     });
   if (skip == "sky-pixels") return scene.environment.type != Environment::Type::None;
+  if (skip == "dark-emitters")  // a textured emitter is instanced
+    return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const Instance& i) {
+      const Material& m = scene.materials[scene.meshes[i.mesh].material];
+      return m.isEmissive() && m.emissiveTexture.valid();
+    });
   return true;  // refit: every built-in scene is static
 }
 
@@ -152,15 +157,18 @@ void convergedRow(HybridRenderer& renderer, const Scene& scene, const std::strin
   p.row(name, "converged", note, on, off);
 }
 
-// The built-in scenes, and cornell made double-sided everywhere: the only one whose meshes
-// need no any-hit filter (every built-in has single-sided or MASK materials).
+// The built-in scenes, cornell made double-sided everywhere: the only one whose meshes
+// need no any-hit filter (every built-in has single-sided or MASK materials), and cornell
+// lit by a textured panel (the only textured emitter).
 std::vector<std::string> sceneNames() {
   std::vector<std::string> names = builtinSceneNames();
   names.push_back("cornell2s");
+  names.push_back("cornell-textured-light");
   return names;
 }
 
 Scene sceneNamed(const std::string& name) {
+  if (name == "cornell-textured-light") return makeCornellTexturedLight();
   if (name != "cornell2s") return makeBuiltinScene(name);
   Scene s = makeBuiltinScene("cornell");
   for (Material& m : s.materials) m.doubleSided = true;
@@ -202,9 +210,11 @@ void benchScene(const std::string& name, const Config& o, Printer& p) {
 
 const char* const kUsage =
     "usage: photovr_bench_skips [--out DIR] [--width W] [--height H] [--frames N] [--repeats N]\n"
+    "                           [--scene NAME]\n"
     "Each skip of work a scene does not need, turned off one at a time: hybrid at W x H\n"
     "(240x270), 1 spp, N frames (6, at least 4), best of --repeats (5) alternating runs, and\n"
-    "the converged-accumulation stop; writes bench_skips.csv to --out (out/bench).\n";
+    "the converged-accumulation stop, on every bench scene (the built-ins, cornell2s,\n"
+    "cornell-textured-light) or --scene NAME; writes bench_skips.csv to --out (out/bench).\n";
 
 int run(const Options& options) {
   Config o;
@@ -224,7 +234,12 @@ int run(const Options& options) {
   Printer p{std::ofstream(o.out + "/bench_skips.csv")};
   p.csv << "scene,skip,on_ms_per_frame,off_ms_per_frame,time_saved,on_relmse,off_relmse,"
            "time_saved_at_equal_error,on_rays_per_frame,off_rays_per_frame,note\n";
-  for (const std::string& name : sceneNames()) benchScene(name, o, p);
+  const std::string only = options.text("--scene", "");
+  const std::vector<std::string> names = sceneNames();
+  if (!only.empty() && std::find(names.begin(), names.end(), only) == names.end())
+    throw UsageError("--scene: '" + only + "' is none of the bench's scenes");
+  for (const std::string& name : names)
+    if (only.empty() || name == only) benchScene(name, o, p);
   std::printf("wrote %s/bench_skips.csv\n", o.out.c_str());
   return 0;
 }
@@ -234,6 +249,6 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   return photovr::benchMain(argc, argv, photovr::kUsage,
-                            {"--out", "--width", "--height", "--frames", "--repeats"}, {},
-                            photovr::run);
+                            {"--out", "--width", "--height", "--frames", "--repeats", "--scene"},
+                            {}, photovr::run);
 }

@@ -154,6 +154,27 @@ void addCornellBlocks(Scene& scene) {
   addInstance(scene, shortBlock, translateRotateY({0.38f, 0, 0.3f}, 17.0f), "short-block");
 }
 
+// The textured ceiling panel's emissive texture: kPanelTexels^2, lit in the central
+// kPanelLit^2 texels from the centre.
+constexpr int kPanelTexels = 64, kPanelLit = 4, kPanelCells = 32;
+
+Texture panelTexture() {
+  Texture t;
+  t.name = "panel-emission";
+  t.width = t.height = kPanelTexels;
+  t.rgba.assign(size_t(kPanelTexels) * kPanelTexels * 4, 0);
+  const int lo = kPanelTexels / 2;  // on a cell edge (2 texels per cell)
+  for (int y = 0; y < kPanelTexels; ++y)
+    for (int x = 0; x < kPanelTexels; ++x) {
+      uint8_t* p = &t.rgba[(size_t(y) * kPanelTexels + x) * 4];
+      const bool lit = x >= lo && x < lo + kPanelLit && y >= lo && y < lo + kPanelLit;
+      p[0] = p[1] = p[2] = lit ? 255 : 0;
+      p[3] = 255;
+    }
+  t.nearest = true;  // texel-sharp edges
+  return t;
+}
+
 Scene makeCornell() {
   Scene scene;
   scene.name = "cornell";
@@ -474,6 +495,32 @@ std::vector<std::string> builtinSceneNames() {
 bool isBuiltinScene(const std::string& name) {
   const std::vector<std::string> names = builtinSceneNames();
   return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+Scene makeCornellTexturedLight() {
+  Scene scene = makeCornell();
+  scene.name = "cornell-textured-light";
+  Mesh panel;
+  const float cell = 2.0f / kPanelCells;
+  for (int j = 0; j < kPanelCells; ++j)
+    for (int i = 0; i < kPanelCells; ++i)
+      appendMesh(panel, makeQuad({-1 + i * cell, 2.0f - 0.001f, -1 + j * cell}, {cell, 0, 0},
+                                 {0, 0, cell}));
+  for (size_t k = 0; k < panel.positions.size(); ++k)
+    panel.uv0[k] = {0.5f * (panel.positions[k].x + 1), 0.5f * (panel.positions[k].z + 1)};
+  scene.textures.push_back(panelTexture());
+  Material m = cornellLight();
+  m.name = "panel-light";
+  // The lit square is (2 m x kPanelLit / kPanelTexels)^2, the cornell light 0.5 m square:
+  // the same power.
+  const float litSide = 2.0f * kPanelLit / kPanelTexels;
+  m.emissiveStrength *= (kCornellLightSize * kCornellLightSize) / (litSide * litSide);
+  m.emissiveTexture.texture = int(scene.textures.size() - 1);
+  panel.name = "panel-light";
+  panel.material = addMaterial(scene, m);
+  for (const Instance& inst : scene.instances)  // the panel takes the light's place
+    if (inst.node == "cornell-light") scene.meshes[size_t(inst.mesh)] = panel;
+  return scene;
 }
 
 Scene makeBuiltinScene(const std::string& name) {

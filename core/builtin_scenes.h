@@ -23,4 +23,10 @@ bool isBuiltinScene(const std::string& name);
 // naming the valid scenes for an unknown name.
 Scene makeBuiltinScene(const std::string& name);
 
+// Not a listed built-in: cornell lit instead by a ceiling panel of 2048 emissive triangles
+// under an emissive texture that is black but for a square 1/256 of the panel (emitting the
+// cornell light's power): the textured-emitter case of issue 23, for the light set's test
+// and bench_skips ("dark-emitters").
+Scene makeCornellTexturedLight();
+
 }  // namespace photovr

@@ -52,6 +52,42 @@ std::array<float, 9> vertexKey(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   return {v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0], v[2][1], v[2][2]};
 }
 
+// Largest number of points a textured emitter's power is estimated from.
+constexpr int kMaxEmissionPoints = 64;
+
+// Mean luminance of what triangle t of 'inst' emits from its front, over the triangle: the
+// emission factor alone without an emissive texture; with one, a stratified average over
+// about one point per texel the triangle covers (at most kMaxEmissionPoints), through the
+// same texture lookups shading uses. The light set's weights need not be exact to stay
+// unbiased (any positive weight for a triangle that emits is), only close for low variance;
+// a triangle measured black is left out of the set, which is unbiased too: BSDF rays still
+// find it, with MIS weight 1 where the light set does not hold it (pdfArea 0).
+float meanEmission(const Scene& scene, uint32_t instance, uint32_t t, const glm::vec3& normal) {
+  const Mesh& mesh = scene.meshes[scene.instances[instance].mesh];
+  const Material& mat = scene.materials[mesh.material];
+  const TextureRef& ref = mat.unlit ? mat.baseColorTexture : mat.emissiveTexture;
+  if (!ref.valid()) return luminance(mat.emission());
+  const std::vector<glm::vec2>& uv = ref.texCoord == 1 ? mesh.uv1 : mesh.uv0;
+  int points = 1;
+  if (uv.size() == mesh.positions.size()) {
+    const uint32_t* idx = &mesh.indices[3 * size_t(t)];
+    const glm::vec2 d1 = uv[idx[1]] - uv[idx[0]], d2 = uv[idx[2]] - uv[idx[0]];
+    const Texture& tex = scene.textures[size_t(ref.texture)];
+    const float texels = 0.5f * std::abs(d1.x * d2.y - d1.y * d2.x) * float(tex.width) * tex.height;
+    points = int(std::clamp(std::ceil(texels), 1.0f, float(kMaxEmissionPoints)));
+  }
+  float sum = 0.0f;
+  for (int k = 0; k < points; ++k) {
+    // Stratified in the first coordinate, golden-ratio in the second, mapped uniformly onto
+    // the triangle as sampleTriangle maps its numbers (pbrt 3rd ed. §13.6.4).
+    const float ux = (float(k) + 0.5f) / float(points);
+    const float uy = std::fmod(0.5f + float(k) * 0.6180339887f, 1.0f);
+    const float su = std::sqrt(ux);
+    sum += luminance(emissionAt(scene, instance, t, su * (1.0f - uy), su * uy, normal, -normal));
+  }
+  return sum / float(points);
+}
+
 }  // namespace
 
 LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
@@ -80,12 +116,16 @@ LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
       const glm::vec3 e2 = glm::vec3(inst.transform * glm::vec4(mesh.positions[idx[2]], 1.0f)) - p0;
       const float area = 0.5f * glm::length(glm::cross(e1, e2));
       if (!(area > 0.0f)) continue;
+      const glm::vec3 normal = unitGeometricNormal(e1, e2);
+      const float emitted =
+          skips.darkEmitters ? meanEmission(scene, i, t, normal) : luminance(mat.emission());
+      if (!(emitted > 0.0f)) continue;  // black under its texture: see meanEmission
       const auto [it, fresh] =
           seen.try_emplace(vertexKey(p0, p0 + e1, p0 + e2), uint32_t(triangles_.size()));
       triangleSlots_[instanceSlots_[i] + t] = it->second;
       if (!fresh) continue;
-      triangles_.push_back({i, t, p0, e1, e2, unitGeometricNormal(e1, e2), area});
-      weights.push_back(luminance(mat.emission()) * area * kPi * (mat.doubleSided ? 2.0f : 1.0f));
+      triangles_.push_back({i, t, p0, e1, e2, normal, area});
+      weights.push_back(emitted * area * kPi * (mat.doubleSided ? 2.0f : 1.0f));
     }
   }
   if (scene.environment.type != Environment::Type::None) {

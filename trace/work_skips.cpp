@@ -6,7 +6,8 @@
 namespace photovr {
 
 std::vector<std::string> WorkSkips::names() {
-  return {"punctual-lights", "area-lights", "environment", "any-hit", "refit", "sky-pixels"};
+  return {"punctual-lights", "area-lights", "environment",  "any-hit",
+          "refit",           "sky-pixels",  "dark-emitters"};
 }
 
 bool* WorkSkips::flag(const std::string& name) {
@@ -16,6 +17,7 @@ bool* WorkSkips::flag(const std::string& name) {
   if (name == "any-hit") return &anyHitFilter;
   if (name == "refit") return &refit;
   if (name == "sky-pixels") return &skyPixels;
+  if (name == "dark-emitters") return &darkEmitters;
   return nullptr;
 }
 

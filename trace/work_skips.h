@@ -31,6 +31,10 @@ struct WorkSkips {
   // Hybrid: pixels the G-buffer saw no surface in take the environment directly. Off: their
   // primary ray is traced by Embree first.
   bool skyPixels = true;
+  // Emissive triangles are light-sampled in proportion to the power their emissive texture
+  // gives them, and those black under it not at all (trace/lights.cpp, meanEmission). Off:
+  // every emissive triangle is sampled by its emission factor x area, texture unseen.
+  bool darkEmitters = true;
 
   // Every skip by its command-line name, with its flag.
   static std::vector<std::string> names();
