@@ -1225,6 +1225,23 @@ std::vector<int> rootNodes(const Loader& ld) {
   return roots;
 }
 
+// What the file holds that photovr does not play: said in one line each, since the scene
+// renders without it (in its bind pose, at time 0) and would otherwise look merely wrong.
+void warnNotPlayed(Loader& ld) {
+  const tg::Model& m = ld.model;
+  if (!m.animations.empty())
+    ld.warn(std::to_string(m.animations.size()) +
+            " animation(s) not played (photovr renders the scene at rest)");
+  if (!m.skins.empty())
+    ld.warn(std::to_string(m.skins.size()) + " skin(s) not applied (meshes in their bind pose)");
+  size_t morphed = 0;
+  for (const tg::Mesh& mesh : m.meshes)
+    for (const tg::Primitive& prim : mesh.primitives) morphed += !prim.targets.empty();
+  if (morphed > 0)
+    ld.warn(std::to_string(morphed) +
+            " primitive(s) with morph targets: targets not applied (base geometry)");
+}
+
 }  // namespace
 
 Scene loadGltf(const std::string& path) {
@@ -1242,6 +1259,7 @@ Scene loadGltf(const std::string& path) {
     ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
   for (int root : rootNodes(ld)) placeTree(ld, root);
   if (ld.scene.meshes.empty()) ld.fail("contains no triangle meshes");
+  warnNotPlayed(ld);
   // Finite transforms can still carry vertices past float range (a matrix of 1e38s):
   // every later stage would see infinities.
   const Bounds world = ld.scene.worldBounds();

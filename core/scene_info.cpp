@@ -1,5 +1,6 @@
 #include "core/scene_info.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -64,6 +65,29 @@ bool environmentEmits(const Environment& env) {
   }
 }
 
+// photovr traces and rasterises in world-space floats: far from the origin their spacing
+// (2^-23 of the coordinate, about) snaps vertices. Below 1/4096 of the scene's extent per
+// step the snapping stays under the offsets rays leave surfaces by; above, a 1e7 m scene
+// measured visibly wrong (issue 23: a 1 m grid, a Cornell box's short block gone).
+constexpr double kMaxSpacingOverExtent = 1.0 / 4096.0;
+
+std::string farFromOriginWarning(const Scene& scene) {
+  const Bounds b = scene.worldBounds();
+  const glm::vec3 far = glm::max(glm::abs(b.min), glm::abs(b.max));
+  const double reach = std::max({double(far.x), double(far.y), double(far.z)});
+  const double extent = glm::length(glm::dvec3(b.extent()));
+  if (!(reach > 0.0) || !(extent > 0.0) || !std::isfinite(reach)) return "";
+  const double spacing = double(std::nextafter(float(reach), INFINITY)) - double(float(reach));
+  if (spacing <= kMaxSpacingOverExtent * extent) return "";
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "geometry lies up to %.3g m from the origin, where floats are %.3g m apart "
+                "(1/%.0f of the scene's %.3g m extent): vertices snap to that grid; move the "
+                "scene near the origin",
+                reach, spacing, extent / spacing, extent);
+  return text;
+}
+
 void addWarnings(SceneFeatures& f, const Scene& scene, size_t badInstances, size_t unusedMeshes) {
   if (badInstances > 0)
     f.warnings.push_back(count(badInstances) + " instances name a mesh that does not exist");
@@ -76,6 +100,7 @@ void addWarnings(SceneFeatures& f, const Scene& scene, size_t badInstances, size
       env.pixels.size() != size_t(env.width) * size_t(env.height))
     f.warnings.push_back("environment map pixel count does not match its size");
   if (scene.cameras.empty()) f.warnings.push_back("no camera in the scene");
+  if (std::string far = farFromOriginWarning(scene); !far.empty()) f.warnings.push_back(far);
 }
 
 // ---------------------------------------------------------------------------------------

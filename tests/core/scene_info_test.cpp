@@ -5,6 +5,8 @@
 #include "core/builtin_scenes.h"
 #include "core/mesh_gen.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace photovr {
 namespace {
 
@@ -33,6 +35,33 @@ TEST(SceneInfo, EmptySceneNeedsNothingAndWarnsItIsBlack) {
   EXPECT_TRUE(contains(text, "alpha mask: no")) << text;
   EXPECT_TRUE(contains(text, "the image will be black")) << text;
   EXPECT_TRUE(contains(text, "world bounds: empty")) << text;
+}
+
+// Issue 23: a scene 1e7 m from the origin is snapped to a 1 m float grid; info and render
+// say so. At 1 km the spacing (6e-5 m) is 1/57000 of cornell's 3.5 m extent: no warning.
+TEST(SceneInfo, GeometryFarFromTheOriginIsAWarningNamingThePrecision) {
+  auto moved = [](float offset) {
+    Scene s = makeBuiltinScene("cornell");
+    for (Instance& i : s.instances)
+      i.transform = glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0, 0)) * i.transform;
+    return s;
+  };
+  auto farWarning = [](const Scene& s) {
+    for (const std::string& w : analyzeScene(s).warnings)
+      if (contains(w, "from the origin")) return w;
+    return std::string();
+  };
+  EXPECT_EQ(farWarning(moved(0.0f)), "");
+  EXPECT_EQ(farWarning(moved(1e3f)), "");
+  const std::string w = farWarning(moved(1e7f));
+  EXPECT_TRUE(contains(w, "up to 1e+07 m from the origin, where floats are 1 m apart")) << w;
+}
+
+TEST(SceneInfo, UnlitSurfacesAreSomethingThatShows) {
+  Material m;
+  m.unlit = true;
+  const SceneFeatures f = analyzeScene(oneQuad(m));
+  for (const std::string& w : f.warnings) EXPECT_FALSE(contains(w, "no light")) << w;
 }
 
 TEST(SceneInfo, EmissiveMaterialCountsInstancedTriangles) {
