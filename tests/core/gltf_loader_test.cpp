@@ -368,8 +368,8 @@ TEST(GltfLoader, RequiredExtensionIsTheFirstErrorBeforeWhatItEncodes) {
   std::string json = replaced(triangleGltf(), R"("scene":0,)",
                               R"("extensionsUsed":["EXT_meshopt_compression"],
 "extensionsRequired":["EXT_meshopt_compression"],"scene":0,)");
-  json = replaced(json, R"({"bufferView":0,"componentType":5126)",
-                  R"({"bufferView":7,"componentType":5126)");
+  json = replaced(json, R"("bufferView":0,"componentType":5126)",
+                  R"("bufferView":7,"componentType":5126)");
   const std::string error = loadError(writeGltf("meshopt_views.gltf", json));
   EXPECT_NE(error.find("meshopt_views.gltf: requires unsupported extension(s) "
                        "EXT_meshopt_compression"),
