@@ -24,8 +24,10 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/gltf_draco.h"
+#include "core/gltf_meshopt.h"
 #include "core/gltf_json_types.h"
 #include "core/image_io.h"
+#include "core/scene_transform.h"
 #include "core/mesh_util.h"
 
 namespace photovr {
@@ -45,7 +47,7 @@ const std::vector<std::string> kSupportedExtensions = {
     "KHR_materials_ior",          "KHR_materials_sheen",
     "KHR_materials_specular",     "KHR_materials_transmission",
     "KHR_materials_unlit",        "KHR_materials_volume",
-    "KHR_texture_transform"};
+    "KHR_texture_transform",      "EXT_meshopt_compression"};
 
 bool supported(const std::string& extension) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
@@ -221,7 +223,6 @@ std::string baseDirOf(const std::string& path) {
 std::string whyUnsupported(const std::string& name) {
   if (name == "KHR_texture_basisu")
     return " (Basis Universal textures: Debian 12 ships no Basis decoder)";
-  if (name == "EXT_meshopt_compression") return " (meshopt-compressed buffers: not decoded yet)";
   return "";
 }
 
@@ -269,6 +270,32 @@ std::vector<uint8_t> withJsonChunk(const std::vector<uint8_t>& glb, std::string 
   return out;
 }
 
+// The JSON as tinygltf is given it: Draco primitives' index accessors pointed at a buffer
+// view, meshopt fallback buffers given placeholder data (their sizes kept in 'meshopt');
+// empty when neither was needed.
+std::string preparedJson(const uint8_t* json, size_t size, MeshoptFallbacks& meshopt) {
+  std::string text = withDracoViews(json, size);
+  if (!text.empty()) {
+    json = reinterpret_cast<const uint8_t*>(text.data());
+    size = text.size();
+  }
+  meshopt = withMeshoptFallbacks(json, size);
+  if (!meshopt.json.empty()) text = std::move(meshopt.json);
+  return text;
+}
+
+// tinygltf's result, with an exception it lets out turned into the one-line error: a GLB
+// buffer with byteLength 0 makes it index an empty vector with at() (found by fuzzing the
+// meshopt decoder's inputs, issue 23).
+template <typename Load>
+bool tinygltfLoads(const std::string& path, Load load) {
+  try {
+    return load();
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("tinygltf could not parse the file (") + e.what() + ")");
+  }
+}
+
 tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
                      std::vector<std::string>& warnings) {
   tg::TinyGLTF loader;
@@ -277,24 +304,30 @@ tg::Model parseModel(const std::string& path, const std::vector<uint8_t>& bytes,
   tg::Model model;
   std::string err, warn;
   const std::string baseDir = baseDirOf(path);
+  MeshoptFallbacks meshopt;
   bool ok;
   if (isGlb(bytes)) {
     checkGlbLayout(bytes, path);
     const size_t jsonSize = std::min<size_t>(readU32(bytes, 12), bytes.size() - 20);
     checkJson(bytes.data() + 20, jsonSize, path);
     const std::vector<uint8_t> glb =
-        withJsonChunk(bytes, withDracoViews(bytes.data() + 20, jsonSize));
-    ok =
-        loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()), baseDir);
+        withJsonChunk(bytes, preparedJson(bytes.data() + 20, jsonSize, meshopt));
+    ok = tinygltfLoads(path, [&] {
+      return loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()),
+                                         baseDir);
+    });
   } else {
     checkJson(bytes.data(), bytes.size(), path);
-    std::string text = withDracoViews(bytes.data(), bytes.size());
+    std::string text = preparedJson(bytes.data(), bytes.size(), meshopt);
     if (text.empty()) text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()),
-                                    baseDir);
+    ok = tinygltfLoads(path, [&] {
+      return loader.LoadASCIIFromString(&model, &err, &warn, text.data(), unsigned(text.size()),
+                                        baseDir);
+    });
   }
   if (!ok) throw InputError(path, describeParseFailure(err, warn));
   forwardWarnings(path, warn, warnings);
+  decodeMeshoptViews(model, meshopt, path);
   return model;
 }
 

@@ -13,6 +13,7 @@ PACKAGES=(
   libtinygltf-dev libstb-dev
   nlohmann-json3-dev  # glTF member types, checked before tinygltf drops a wrong one
   libdraco-dev  # KHR_draco_mesh_compression meshes (decoder, and the encoder the tests use)
+  libmeshoptimizer-dev  # EXT_meshopt_compression buffers (decoder, and the encoder the tests use)
   libopenimageio-dev openimageio-tools
   libhidapi-dev
   libimgui-dev

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/mesh_gen.h"
+#include "tests/core/glb_file.h"
 #include "tests/core/test_dir.h"
 
 namespace photovr {
@@ -89,22 +90,7 @@ std::string dracoJson(const Encoded& e, size_t vertices, size_t indices, const s
          std::to_string(indices) + R"(,"type":"SCALAR"}]})";
 }
 
-void putU32(std::string& s, uint32_t v) {
-  for (int k = 0; k < 4; ++k) s.push_back(char(v >> (8 * k)));
-}
-
-std::string glb(std::string json, std::string bin) {
-  while (json.size() % 4) json.push_back(' ');
-  while (bin.size() % 4) bin.push_back('\0');
-  std::string out = "glTF";
-  putU32(out, 2);
-  putU32(out, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
-  putU32(out, uint32_t(json.size()));
-  out += "JSON" + json;
-  putU32(out, uint32_t(bin.size()));
-  out += std::string("BIN\0", 4) + bin;
-  return out;
-}
+using testing::glb;
 
 struct Tolerance {
   float position, normal, uv;

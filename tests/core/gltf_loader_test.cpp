@@ -354,25 +354,25 @@ TEST(GltfLoader, TransformsBeyondFloatRangeAreAnError) {
 TEST(GltfLoader, RequiredUnsupportedExtensionIsAnError) {
   const std::string json =
       replaced(triangleGltf(), R"("scene":0,)",
-               R"("extensionsUsed":["EXT_meshopt_compression","KHR_lights_punctual"],
-"extensionsRequired":["EXT_meshopt_compression"],"scene":0,)");
-  const std::string error = loadError(writeGltf("meshopt.gltf", json));
-  EXPECT_NE(error.find("requires unsupported extension(s) EXT_meshopt_compression"),
-            std::string::npos);
+               R"("extensionsUsed":["KHR_texture_basisu","KHR_lights_punctual"],
+"extensionsRequired":["KHR_texture_basisu"],"scene":0,)");
+  const std::string error = loadError(writeGltf("basisu_required.gltf", json));
+  EXPECT_NE(error.find("requires unsupported extension(s) KHR_texture_basisu"), std::string::npos);
 }
 
-// Issue 23: a compressed file's accessors name buffer views the extension decodes into,
-// which tinygltf refused first ("accessor[0] invalid bufferView", for a Draco file). The
-// required extension is checked on the JSON before anything else, so it is the one error.
+// Issue 23: a file's accessors may name buffer views that only a required extension makes
+// valid, which tinygltf refused first ("accessor[0] invalid bufferView", for a Draco file
+// before photovr read Draco). The required extension is checked on the JSON before
+// anything else, so it is the one error.
 TEST(GltfLoader, RequiredExtensionIsTheFirstErrorBeforeWhatItEncodes) {
   std::string json = replaced(triangleGltf(), R"("scene":0,)",
-                              R"("extensionsUsed":["EXT_meshopt_compression"],
-"extensionsRequired":["EXT_meshopt_compression"],"scene":0,)");
+                              R"("extensionsUsed":["KHR_texture_basisu"],
+"extensionsRequired":["KHR_texture_basisu"],"scene":0,)");
   json = replaced(json, R"("bufferView":0,"componentType":5126)",
                   R"("bufferView":7,"componentType":5126)");
-  const std::string error = loadError(writeGltf("meshopt_views.gltf", json));
-  EXPECT_NE(error.find("meshopt_views.gltf: requires unsupported extension(s) "
-                       "EXT_meshopt_compression"),
+  const std::string error = loadError(writeGltf("basisu_views.gltf", json));
+  EXPECT_NE(error.find("basisu_views.gltf: requires unsupported extension(s) "
+                       "KHR_texture_basisu"),
             std::string::npos)
       << error;
   EXPECT_EQ(error.find("bufferView"), std::string::npos) << error;
