@@ -390,6 +390,7 @@ struct Loader {
   std::vector<bool> meshConverted;
   std::vector<int> textures;  // glTF texture -> photovr texture, -1 unusable
   std::vector<bool> visited;  // nodes already placed, to catch cycles and shared children
+  DoublePlacement placed;     // the scene's parts as placed in double, for storePlacement
   int defaultMaterial = -1;
 };
 
@@ -1066,37 +1067,43 @@ const std::vector<int>& sceneMeshes(Loader& ld, int meshIndex) {
 // ---------------------------------------------------------------------------------------
 // Nodes, lights and cameras (glTF 2.0 §3.5)
 
-bool isFinite(const glm::mat4& m) {
+template <typename T>
+bool isFinite(const glm::mat<4, 4, T>& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(m[c][r])) return false;
   return true;
 }
 
-glm::mat4 trsMatrix(const Loader& ld, const tg::Node& n, const std::string& where) {
+glm::dvec3 dvec3Or(const std::vector<double>& v, glm::dvec3 fallback) {
+  return v.size() == 3 ? glm::dvec3(v[0], v[1], v[2]) : fallback;
+}
+
+// Node transforms are composed in double (glTF stores them so): a file 1e7 m out keeps
+// its parts' relative placement to the micrometre until storePlacement re-bases it.
+glm::dmat4 trsMatrix(const Loader& ld, const tg::Node& n, const std::string& where) {
   const bool badSizes = (!n.translation.empty() && n.translation.size() != 3) ||
                         (!n.rotation.empty() && n.rotation.size() != 4) ||
                         (!n.scale.empty() && n.scale.size() != 3);
   if (badSizes) ld.fail(where + ": translation, rotation or scale has the wrong length");
-  glm::mat4 m(1.0f);
-  if (!n.translation.empty()) m = glm::translate(m, vec3Or(n.translation, glm::vec3(0.0f)));
+  glm::dmat4 m(1.0);
+  if (!n.translation.empty()) m = glm::translate(m, dvec3Or(n.translation, glm::dvec3(0.0)));
   if (!n.rotation.empty()) {
     // glTF stores quaternions as (x, y, z, w); glm's constructor takes w first.
-    const glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
-                      float(n.rotation[2]));
+    const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
     // A unit quaternion (§5.25); slightly off ones, as exporters write, are normalised.
-    if (!(glm::length(q) > 1e-6f)) ld.fail(where + ": rotation is not a unit quaternion");
+    if (!(glm::length(q) > 1e-6)) ld.fail(where + ": rotation is not a unit quaternion");
     m = m * glm::mat4_cast(glm::normalize(q));
   }
-  if (!n.scale.empty()) m = glm::scale(m, vec3Or(n.scale, glm::vec3(1.0f)));
+  if (!n.scale.empty()) m = glm::scale(m, dvec3Or(n.scale, glm::dvec3(1.0)));
   return m;
 }
 
-glm::mat4 localTransform(const Loader& ld, const tg::Node& n, const std::string& where) {
-  glm::mat4 m(1.0f);
+glm::dmat4 localTransform(const Loader& ld, const tg::Node& n, const std::string& where) {
+  glm::dmat4 m(1.0);
   if (!n.matrix.empty()) {
     if (n.matrix.size() != 16) ld.fail(where + ": matrix must have 16 numbers");
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(n.matrix[size_t(i)]);  // column-major
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = n.matrix[size_t(i)];  // column-major
   } else {
     m = trsMatrix(ld, n, where);
   }
@@ -1136,7 +1143,7 @@ Light convertLight(Loader& ld, const tg::Light& gl, const std::string& name) {
   return light;
 }
 
-void addLight(Loader& ld, const tg::Node& node, const glm::mat4& world, const std::string& where) {
+void addLight(Loader& ld, const tg::Node& node, const glm::dmat4& world, const std::string& where) {
   const auto it = node.extensions.find("KHR_lights_punctual");
   if (it == node.extensions.end()) return;
   const tg::Value& ext = it->second;
@@ -1149,8 +1156,9 @@ void addLight(Loader& ld, const tg::Node& node, const glm::mat4& world, const st
   Light light = convertLight(ld, gl, gl.name.empty() ? "light#" + std::to_string(index) : gl.name);
   // KHR_lights_punctual: lights sit at the node origin and shine along the node's -Z.
   light.position = glm::vec3(world[3]);
-  light.direction = glm::normalize(glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f));
+  light.direction = glm::vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0)));
   ld.scene.lights.push_back(light);
+  ld.placed.lights.push_back(glm::dvec3(world[3]));
 }
 
 glm::quat rotationOf(const glm::mat4& world) {
@@ -1159,7 +1167,8 @@ glm::quat rotationOf(const glm::mat4& world) {
   return glm::normalize(glm::quat_cast(r));
 }
 
-void addCamera(Loader& ld, const tg::Node& node, const glm::mat4& world, const std::string& where) {
+void addCamera(Loader& ld, const tg::Node& node, const glm::dmat4& world,
+               const std::string& where) {
   if (node.camera < 0) return;
   if (!inRange(node.camera, ld.model.cameras))
     ld.fail(where + ": camera index " + std::to_string(node.camera) + " out of range");
@@ -1186,11 +1195,12 @@ void addCamera(Loader& ld, const tg::Node& node, const glm::mat4& world, const s
     ld.fail("camera " + named(camera.name) +
             ": needs 0 < yfov < pi, znear > 0 and zfar > znear (or none)");
   camera.position = glm::vec3(world[3]);
-  camera.orientation = rotationOf(world);
+  camera.orientation = rotationOf(glm::mat4(world));
   ld.scene.cameras.push_back(camera);
+  ld.placed.cameras.push_back(glm::dvec3(world[3]));
 }
 
-void addMeshInstances(Loader& ld, const tg::Node& node, const glm::mat4& world,
+void addMeshInstances(Loader& ld, const tg::Node& node, const glm::dmat4& world,
                       const std::string& where, const std::string& name) {
   if (node.mesh < 0) return;
   if (!inRange(node.mesh, ld.model.meshes))
@@ -1198,16 +1208,16 @@ void addMeshInstances(Loader& ld, const tg::Node& node, const glm::mat4& world,
   for (int mesh : sceneMeshes(ld, node.mesh)) {
     Instance instance;
     instance.mesh = mesh;
-    instance.transform = world;
-    instance.previousTransform = world;
+    instance.transform = instance.previousTransform = glm::mat4(world);  // storePlacement
     instance.node = name;
     ld.scene.instances.push_back(instance);
+    ld.placed.instances.push_back(world);
   }
 }
 
 // Places one node: checks it, adds its mesh instances, light and camera; returns its world
 // transform.
-glm::mat4 placeNode(Loader& ld, int index, const glm::mat4& parent) {
+glm::dmat4 placeNode(Loader& ld, int index, const glm::dmat4& parent) {
   if (!inRange(index, ld.model.nodes))
     ld.fail("node index " + std::to_string(index) + " out of range");
   const tg::Node& node = ld.model.nodes[size_t(index)];
@@ -1218,7 +1228,7 @@ glm::mat4 placeNode(Loader& ld, int index, const glm::mat4& parent) {
   if (ld.visited[size_t(index)])
     ld.fail(where + ": reached twice, the node hierarchy has a cycle or a shared child");
   ld.visited[size_t(index)] = true;
-  const glm::mat4 world = parent * localTransform(ld, node, where);
+  const glm::dmat4 world = parent * localTransform(ld, node, where);
   addMeshInstances(ld, node, world, where, name);
   addLight(ld, node, world, where);
   addCamera(ld, node, world, where);
@@ -1228,11 +1238,11 @@ glm::mat4 placeNode(Loader& ld, int index, const glm::mat4& parent) {
 // Depth-first, parents before children, with an explicit stack: a file may nest nodes
 // thousands deep, which recursion would turn into a stack overflow.
 void placeTree(Loader& ld, int root) {
-  std::vector<std::pair<int, glm::mat4>> pending = {{root, glm::mat4(1.0f)}};
+  std::vector<std::pair<int, glm::dmat4>> pending = {{root, glm::dmat4(1.0)}};
   while (!pending.empty()) {
     const auto [index, parent] = pending.back();
     pending.pop_back();
-    const glm::mat4 world = placeNode(ld, index, parent);
+    const glm::dmat4 world = placeNode(ld, index, parent);
     const std::vector<int>& children = ld.model.nodes[size_t(index)].children;
     for (auto child = children.rbegin(); child != children.rend(); ++child)
       pending.emplace_back(*child, world);
@@ -1295,6 +1305,8 @@ Scene loadGltf(const std::string& path) {
   warnNotPlayed(ld);
   // Finite transforms can still carry vertices past float range (a matrix of 1e38s):
   // every later stage would see infinities.
+  if (!storePlacement(ld.scene, ld.placed))
+    ld.fail("the node transforms take the geometry beyond float range (non-finite bounds)");
   const Bounds world = ld.scene.worldBounds();
   const auto finite = [](const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -32,6 +32,7 @@ struct Writer {
   tg::Model model;
   bool usesTextureTransform = false;
   std::vector<std::string> materialExtensions{};  // declared in extensionsUsed, in first-use order
+  int originNode = -1;  // the node every other hangs from when the scene was re-based
 
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(path, problem); }
   std::vector<unsigned char>& bin() { return model.buffers[0].data; }
@@ -310,8 +311,23 @@ void addMaterial(Writer& w, const Material& m) {
 int addNode(Writer& w, tg::Node node) {
   w.model.nodes.push_back(std::move(node));
   const int index = int(w.model.nodes.size() - 1);
-  w.model.scenes[0].nodes.push_back(index);
+  if (w.originNode >= 0)
+    w.model.nodes[size_t(w.originNode)].children.push_back(index);
+  else
+    w.model.scenes[0].nodes.push_back(index);
   return index;
+}
+
+// A scene re-based away from its file's zero (Scene::origin) is written back where it was:
+// one root node carries the origin as a translation, in double as glTF stores it.
+void addOriginNode(Writer& w) {
+  if (w.scene.origin == glm::dvec3(0.0)) return;
+  tg::Node node;
+  node.name = "photovr origin";
+  node.translation = {w.scene.origin.x, w.scene.origin.y, w.scene.origin.z};
+  w.model.nodes.push_back(std::move(node));
+  w.originNode = int(w.model.nodes.size() - 1);
+  w.model.scenes[0].nodes.push_back(w.originNode);
 }
 
 void addInstance(Writer& w, const Instance& instance) {
@@ -413,6 +429,7 @@ void buildModel(Writer& w) {
              std::to_string(mesh.material));
     addMesh(w, mesh);
   }
+  addOriginNode(w);
   for (const Instance& instance : w.scene.instances) addInstance(w, instance);
   for (const Light& light : w.scene.lights) addLight(w, light);
   for (const Camera& camera : w.scene.cameras) addCamera(w, camera);

@@ -45,15 +45,20 @@ glm::vec3 Material::absorption() const {
 
 size_t Scene::instancedTriangleCount() const {
   size_t n = 0;
-  for (const Instance& inst : instances) n += meshes[inst.mesh].triangleCount();
+  for (const Instance& inst : instances)
+    if (hasMesh(inst.mesh)) n += meshes[inst.mesh].triangleCount();
   return n;
 }
 
 Bounds Scene::worldBounds() const {
   Bounds b;
-  for (const Instance& inst : instances)
+  // An instance naming a mesh that does not exist is skipped (analyzeScene warns about it):
+  // the bounds of a broken scene are those of what can be drawn.
+  for (const Instance& inst : instances) {
+    if (!hasMesh(inst.mesh)) continue;
     for (const glm::vec3& p : meshes[inst.mesh].positions)
       b.extend(glm::vec3(inst.transform * glm::vec4(p, 1.0f)));
+  }
   return b;
 }
 

@@ -204,9 +204,15 @@ struct Scene {
     bool read = false;
   };
   std::vector<Extension> extensions;
+  // Where this scene's coordinate zero lies in the coordinates of the file it came from
+  // (metres, double): a far-away file is re-based near its content so that floats keep
+  // their precision (core/scene_transform.h); translateScene keeps it up to date.
+  glm::dvec3 origin{0.0};
 
-  size_t instancedTriangleCount() const;
-  Bounds worldBounds() const;
+  // Whether an instance's mesh index names a mesh (a broken scene may hold one that does not).
+  bool hasMesh(int mesh) const { return mesh >= 0 && size_t(mesh) < meshes.size(); }
+  size_t instancedTriangleCount() const;  // instances naming no mesh count nothing
+  Bounds worldBounds() const;             // of the instances that name a mesh
 };
 
 }  // namespace photovr

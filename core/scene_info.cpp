@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
+
+#include "core/scene_transform.h"
 
 namespace photovr {
 namespace {
@@ -26,10 +29,6 @@ std::string fmt(const char* format, double a, double b = 0, double c = 0) {
 
 std::string vec(const glm::vec3& v) {
   return fmt("(%.2f, %.2f, %.2f)", v.x, v.y, v.z);
-}
-
-bool validMesh(const Scene& scene, int mesh) {
-  return mesh >= 0 && size_t(mesh) < scene.meshes.size();
 }
 
 const Material* materialOf(const Scene& scene, const Mesh& mesh) {
@@ -71,20 +70,56 @@ bool environmentEmits(const Environment& env) {
 // measured visibly wrong (issue 23: a 1 m grid, a Cornell box's short block gone).
 constexpr double kMaxSpacingOverExtent = 1.0 / 4096.0;
 
-std::string farFromOriginWarning(const Scene& scene) {
-  const Bounds b = scene.worldBounds();
+// The farthest coordinate of 'b' from zero and its diagonal.
+std::pair<double, double> reachAndExtent(const Bounds& b) {
   const glm::vec3 far = glm::max(glm::abs(b.min), glm::abs(b.max));
-  const double reach = std::max({double(far.x), double(far.y), double(far.z)});
-  const double extent = glm::length(glm::dvec3(b.extent()));
-  if (!(reach > 0.0) || !(extent > 0.0) || !std::isfinite(reach)) return "";
-  const double spacing = double(std::nextafter(float(reach), INFINITY)) - double(float(reach));
-  if (spacing <= kMaxSpacingOverExtent * extent) return "";
+  return {std::max({double(far.x), double(far.y), double(far.z)}),
+          glm::length(glm::dvec3(b.extent()))};
+}
+
+double floatSpacingAt(double reach) {
+  return double(std::nextafter(float(reach), INFINITY)) - double(float(reach));
+}
+
+// World coordinates: a loaded file is re-based near its content (storePlacement), so this
+// is for scenes built or moved in code in float.
+std::string farFromOriginWarning(const Scene& scene) {
+  const auto [reach, extent] = reachAndExtent(scene.worldBounds());
+  if (!floatsTooCoarse(reach, extent, kMaxSpacingOverExtent)) return "";
+  const double spacing = floatSpacingAt(reach);
   char text[240];
   std::snprintf(text, sizeof text,
                 "geometry lies up to %.3g m from the origin, where floats are %.3g m apart "
                 "(1/%.0f of the scene's %.3g m extent): vertices snap to that grid; move the "
                 "scene near the origin",
                 reach, spacing, extent / spacing, extent);
+  return text;
+}
+
+// A mesh's own vertex data, stored in float in the file: no re-basing recovers what was
+// lost there. One warning for the worst mesh.
+std::string farVertexDataWarning(const Scene& scene) {
+  const Mesh* worst = nullptr;
+  double worstRatio = 0.0, worstReach = 0.0;
+  for (const Mesh& m : scene.meshes) {
+    Bounds b;
+    for (const glm::vec3& p : m.positions) b.extend(p);
+    if (b.empty()) continue;
+    const auto [reach, extent] = reachAndExtent(b);
+    if (!floatsTooCoarse(reach, extent, kMaxSpacingOverExtent)) continue;
+    if (const double ratio = floatSpacingAt(reach) / extent; ratio > worstRatio) {
+      worst = &m;
+      worstRatio = ratio;
+      worstReach = reach;
+    }
+  }
+  if (!worst) return "";
+  char text[280];
+  std::snprintf(text, sizeof text,
+                "mesh '%s' stores vertices up to %.3g m from its own origin, where floats are "
+                "%.3g m apart (1/%.0f of its extent): that precision was lost in the file; "
+                "export it with the offset in its node's transform",
+                worst->name.c_str(), worstReach, floatSpacingAt(worstReach), 1.0 / worstRatio);
   return text;
 }
 
@@ -101,6 +136,7 @@ void addWarnings(SceneFeatures& f, const Scene& scene, size_t badInstances, size
     f.warnings.push_back("environment map pixel count does not match its size");
   if (scene.cameras.empty()) f.warnings.push_back("no camera in the scene");
   if (std::string far = farFromOriginWarning(scene); !far.empty()) f.warnings.push_back(far);
+  if (std::string far = farVertexDataWarning(scene); !far.empty()) f.warnings.push_back(far);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -114,7 +150,7 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
     triangles += m.triangleCount();
   }
   for (const Instance& inst : scene.instances)
-    if (validMesh(scene, inst.mesh)) {
+    if (scene.hasMesh(inst.mesh)) {
       ++uses[inst.mesh];
       instanced += scene.meshes[inst.mesh].triangleCount();
     }
@@ -192,11 +228,7 @@ std::string environmentName(const Environment& env) {
 }
 
 void describeBounds(std::ostream& out, const Scene& scene) {
-  Bounds b;
-  for (const Instance& inst : scene.instances)
-    if (validMesh(scene, inst.mesh))
-      for (const glm::vec3& p : scene.meshes[inst.mesh].positions)
-        b.extend(glm::vec3(inst.transform * glm::vec4(p, 1.0f)));
+  const Bounds b = scene.worldBounds();
   if (b.empty()) {
     out << "world bounds: empty\n";
     return;
@@ -204,6 +236,10 @@ void describeBounds(std::ostream& out, const Scene& scene) {
   const glm::vec3 e = b.extent();
   out << "world bounds: " << vec(b.min) << " .. " << vec(b.max) << ", size "
       << fmt("%.2f x %.2f x %.2f m", e.x, e.y, e.z) << "\n";
+  if (scene.origin != glm::dvec3(0.0))
+    out << "origin: the file's "
+        << fmt("(%.3f, %.3f, %.3f)", scene.origin.x, scene.origin.y, scene.origin.z)
+        << " m (re-based there: floats at the file's coordinates were too coarse)\n";
 }
 
 void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
@@ -247,7 +283,7 @@ SceneFeatures analyzeScene(const Scene& scene) {
   std::vector<bool> used(scene.meshes.size(), false);
   size_t badInstances = 0;
   for (const Instance& inst : scene.instances) {
-    if (!validMesh(scene, inst.mesh)) {
+    if (!scene.hasMesh(inst.mesh)) {
       ++badInstances;
       continue;
     }

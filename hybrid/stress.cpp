@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
+
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/builtin_scenes.h"
 #include "core/error_metrics.h"
+#include "core/gltf_loader.h"
+#include "core/gltf_writer.h"
 #include "core/mesh_gen.h"
 #include "core/scene_transform.h"
 #include "hybrid/hybrid_renderer.h"
@@ -150,6 +155,28 @@ StressCase translated(const Scene& base, const Pose& view, float yfov) {
   const glm::vec3 offset(1e5f, 1e5f, -1e5f);
   StressCase c = transformed("translated 1e5 m", base, view, yfov, 1.0f, offset);
   setTwin(c, "base rounded as at 1e5 m", snappedTwin(c.name, base, view, yfov, offset));
+  return c;
+}
+
+// A glTF file whose content lies 'offset' from its zero (a root node's translation, in
+// double as glTF stores it), written by export and read back as a user's file would be. At
+// 1e7 m floats are 1 m apart and at 1e8 m 8 m: a loader composing in float put the box on
+// that grid (its short block vanished, issue 23). The loader composes in double and
+// re-bases the scene at its centre, so the twin is the base scene itself, not a snapped one.
+StressCase farFile(const std::string& name, const Scene& base, const Pose& view, float yfov,
+                   double offset) {
+  Scene far = base;
+  far.origin = glm::dvec3(offset, 0.25 * offset, -offset);
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("photovr_stress_far_" + std::to_string(::getpid()) + ".glb");
+  writeGlb(far, file.string());
+  Scene loaded = loadGltf(file.string());
+  std::filesystem::remove(file);
+  loaded.environment = base.environment;  // glTF holds no environment
+  const Pose there = {glm::vec3(glm::dvec3(view.position) + far.origin - loaded.origin),
+                      view.orientation};
+  StressCase c = makeCase(name, loaded, there, yfov);
+  setTwin(c, "base, at the origin", makeCase(name, base, view, yfov));
   return c;
 }
 
@@ -301,6 +328,8 @@ std::vector<StressCase> stressCases() {
   const float yfov = cornell.cameras[0].yfov;
   std::vector<StressCase> cases;
   cases.push_back(translated(cornell, view, yfov));
+  cases.push_back(farFile("glTF file 1e7 m out", cornell, view, yfov, 1e7));
+  cases.push_back(farFile("glTF file 1e8 m out", cornell, view, yfov, 1e8));
   cases.push_back(scaled("scaled 2^-10 (~1e-3)", cornell, view, yfov, 1.0f / 1024.0f));
   cases.push_back(scaled("scaled 2^13 (~1e4)", cornell, view, yfov, 8192.0f));
   cases.push_back(sameAsBase("degenerate, sliver, duplicate triangles",

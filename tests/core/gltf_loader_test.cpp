@@ -756,6 +756,48 @@ TEST(GltfLoaderErrors, NodeCycle) {
   EXPECT_NE(loadError(writeGltf("cycle.gltf", json)).find("cycle"), std::string::npos);
 }
 
+// Issue 23: a file 1e7 m out, where floats are 1 m apart. Its two triangles 0.3 m apart
+// kept that offset only to the metre when the loader composed in float; composed in double
+// and re-based at the content's centre, they keep it to float precision at the origin.
+TEST(GltfLoader, FarAwayFileIsRebasedWithItsPrecision) {
+  const std::string nodes =
+      R"("nodes":[{"translation":[10000000.25,0,-10000000],"children":[1,2]},{"mesh":0},)"
+      R"({"mesh":0,"translation":[0.3,0,0]}])";
+  const std::string path = writeGltf(
+      "far.gltf", replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])", nodes));
+  const Scene s = loadGltf(path);
+  ASSERT_EQ(s.instances.size(), 2u);
+  const glm::vec3 a(s.instances[0].transform[3]), b(s.instances[1].transform[3]);
+  // Both translations are below 1 m after re-basing: their floats are within 2^-24 m.
+  EXPECT_NEAR(b.x - a.x, 0.3f, 1e-6f);
+  EXPECT_NEAR(glm::length(a), 0.0f, 1.0f);
+  // The origin names the file's place: to the float rounding of a (below 2^-24 m).
+  EXPECT_NEAR(s.origin.x + double(a.x), 10000000.25, 1e-7);
+  EXPECT_NEAR(s.origin.z + double(a.z), -1e7, 1e-7);
+  for (const std::string& w : analyzeScene(s).warnings)
+    EXPECT_EQ(w.find("from the origin"), std::string::npos) << w;
+  EXPECT_NE(describeScene(s).find("origin: the file's (10000000.9"), std::string::npos)
+      << describeScene(s);
+  // Export writes it back where it was: read again, the same origin and placement.
+  const std::string copy = (testDir() / "far_copy.glb").string();
+  writeGlb(s, copy);
+  // Read again, the centre is recomputed from double sums of floats: equal to rounding.
+  const Scene again = loadGltf(copy);
+  EXPECT_NEAR(glm::length(again.origin - s.origin), 0.0, 1e-6);
+  const glm::dvec3 placedThen = s.origin + glm::dvec3(s.instances[1].transform[3]);
+  const glm::dvec3 placedNow = again.origin + glm::dvec3(again.instances[1].transform[3]);
+  EXPECT_NEAR(glm::length(placedNow - placedThen), 0.0, 1e-6);
+}
+
+// A file near its zero is left where it is: its coordinates are the file's.
+TEST(GltfLoader, NearbyFileIsNotRebased) {
+  const std::string nodes = R"("nodes":[{"translation":[3,0,-5],"mesh":0}])";
+  const Scene s = loadGltf(writeGltf(
+      "near.gltf", replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])", nodes)));
+  EXPECT_EQ(s.origin, glm::dvec3(0.0));
+  EXPECT_EQ(glm::vec3(s.instances[0].transform[3]), glm::vec3(3, 0, -5));
+}
+
 TEST(GltfLoader, VeryDeepHierarchyLoadsWithoutStackOverflow) {
   std::string nodes = R"("nodes":[)";
   const int depth = 20000;
@@ -765,8 +807,11 @@ TEST(GltfLoader, VeryDeepHierarchyLoadsWithoutStackOverflow) {
   const std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}])", nodes);
   const Scene scene = loadGltf(writeGltf("deep.gltf", json));
   ASSERT_EQ(scene.instances.size(), 1u);
-  // Exact: sums of 1.0 stay integers far below float's 2^24.
-  EXPECT_EQ(scene.instances[0].transform[3], glm::vec4(0, float(depth), 0, 1));
+  // Exact: sums of 1.0 stay integers. 20 km up, floats are 2 mm apart, far coarser than
+  // the 1 m triangle needs: the scene is re-based at its centre, and the origin says where.
+  const glm::vec4 t = scene.instances[0].transform[3];
+  EXPECT_EQ(glm::dvec3(t) + scene.origin, glm::dvec3(0, depth, 0));
+  EXPECT_LT(glm::length(glm::vec3(t)), 1.0f);
 }
 
 TEST(GltfLoaderErrors, NoMeshes) {

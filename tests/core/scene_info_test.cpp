@@ -57,6 +57,21 @@ TEST(SceneInfo, GeometryFarFromTheOriginIsAWarningNamingThePrecision) {
   EXPECT_TRUE(contains(w, "up to 1e+07 m from the origin, where floats are 1 m apart")) << w;
 }
 
+// Vertex data stored far from its mesh's own origin lost its precision in the file: no
+// re-basing recovers it, so info says which mesh and how much.
+TEST(SceneInfo, FarVertexDataIsAWarningNamingTheMesh) {
+  Scene s = makeBuiltinScene("cornell");
+  EXPECT_EQ(describeScene(s).find("stores vertices"), std::string::npos);
+  for (glm::vec3& p : s.meshes[0].positions) p += glm::vec3(1e7f, 0.0f, 0.0f);
+  std::string found;
+  for (const std::string& w : analyzeScene(s).warnings)
+    if (contains(w, "stores vertices")) found = w;
+  EXPECT_TRUE(contains(found, "mesh '" + s.meshes[0].name +
+                                  "' stores vertices up to 1e+07 m from its own origin, "
+                                  "where floats are 1 m apart"))
+      << found;
+}
+
 TEST(SceneInfo, UnlitSurfacesAreSomethingThatShows) {
   Material m;
   m.unlit = true;

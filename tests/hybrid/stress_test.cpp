@@ -13,7 +13,7 @@ TEST(StressSuite, EveryCaseMatchesItsExpectedImages) {
   testing::osmesaContext();
   const std::vector<StressResult> results = runStressSuite(true);
   std::printf("%s", formatStressReport(results).c_str());
-  ASSERT_EQ(results.size(), 8u);
+  ASSERT_EQ(results.size(), 10u);
   for (const StressResult& r : results) {
     EXPECT_EQ(r.nonFinitePixels, 0u) << r.name;
     EXPECT_EQ(r.rejectedSamples, 0u) << r.name;  // valid input never produces NaN/Inf
