@@ -78,6 +78,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   createOutputFolder(r.outDir);
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
+  applyTimeOption(r.scene, o);
   warnAboutScene(r.scene);
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision

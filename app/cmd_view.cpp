@@ -131,6 +131,7 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("--screenshot: needs --frames N (it saves the last refresh)");
   c.scene = loadSceneSpec(o.text("--scene", "atrium"));
   applyEnvironmentOption(c.scene, o.text("--env", ""));
+  applyTimeOption(c.scene, o);
   warnAboutScene(c.scene);
   c.view = resolveView(c.scene, o);
   if (!c.view.stereo || o.has("--fovy"))

@@ -42,6 +42,16 @@ void applyEnvironmentOption(Scene& scene, const std::string& envPath) {
   if (!warning.empty()) std::cerr << "photovr: warning: " << warning << "\n";
 }
 
+void applyTimeOption(Scene& scene, const Options& options) {
+  const double t = options.number("--time", 0.0f, 0.0f, 1e6f);
+  if (!isAnimated(scene)) {
+    if (options.has("--time"))
+      std::cerr << "photovr: warning: --time: the scene has no animation; it is rendered as is\n";
+    return;
+  }
+  poseScene(scene, t, t - kAnimationFrameSeconds);
+}
+
 bool wantsHelp(const Args& args) {
   for (const std::string& a : args)
     if (a == "--help" || a == "-h") return true;

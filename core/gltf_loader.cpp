@@ -377,7 +377,8 @@ struct Loader {
         meshes(m.meshes.size()),
         meshConverted(m.meshes.size(), false),
         textures(m.textures.size(), kTextureNotLoaded),
-        visited(m.nodes.size(), false) {}
+        visited(m.nodes.size(), false),
+        sceneNodeOf(m.nodes.size(), -1) {}
 
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(path, problem); }
   void warn(const std::string& problem) { scene.warnings.push_back(path + ": " + problem); }
@@ -388,9 +389,10 @@ struct Loader {
   Scene scene;
   std::vector<std::vector<int>> meshes;  // glTF mesh -> photovr meshes (one per primitive)
   std::vector<bool> meshConverted;
-  std::vector<int> textures;  // glTF texture -> photovr texture, -1 unusable
-  std::vector<bool> visited;  // nodes already placed, to catch cycles and shared children
-  DoublePlacement placed;     // the scene's parts as placed in double, for storePlacement
+  std::vector<int> textures;     // glTF texture -> photovr texture, -1 unusable
+  std::vector<bool> visited;     // nodes already placed, to catch cycles and shared children
+  DoublePlacement placed;        // the scene's parts as placed in double, for storePlacement
+  std::vector<int> sceneNodeOf;  // glTF node -> Scene::nodes, -1 when not in the scene
   int defaultMaterial = -1;
 };
 
@@ -1217,7 +1219,31 @@ void addMeshInstances(Loader& ld, const tg::Node& node, const glm::dmat4& world,
 
 // Places one node: checks it, adds its mesh instances, light and camera; returns its world
 // transform.
-glm::dmat4 placeNode(Loader& ld, int index, const glm::dmat4& parent) {
+// The node's rest pose for animation (core/animation.h), from its checked local transform.
+SceneNode restPose(const tg::Node& n, const glm::dmat4& local, const std::string& name,
+                   int parent) {
+  SceneNode out;
+  out.name = name;
+  out.parent = parent;
+  out.hasMatrix = !n.matrix.empty();
+  out.matrix = local;
+  if (n.translation.size() == 3) out.translation = dvec3Or(n.translation, glm::dvec3(0.0));
+  if (n.rotation.size() == 4)
+    out.rotation =
+        glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+  if (n.scale.size() == 3) out.scale = dvec3Or(n.scale, glm::dvec3(1.0));
+  return out;
+}
+
+// The indices [before, now) of what a node added to one of the scene's lists.
+template <typename T>
+std::vector<int> addedSince(size_t before, const std::vector<T>& list) {
+  std::vector<int> out;
+  for (size_t i = before; i < list.size(); ++i) out.push_back(int(i));
+  return out;
+}
+
+glm::dmat4 placeNode(Loader& ld, int index, const glm::dmat4& parent, int parentNode) {
   if (!inRange(index, ld.model.nodes))
     ld.fail("node index " + std::to_string(index) + " out of range");
   const tg::Node& node = ld.model.nodes[size_t(index)];
@@ -1228,24 +1254,39 @@ glm::dmat4 placeNode(Loader& ld, int index, const glm::dmat4& parent) {
   if (ld.visited[size_t(index)])
     ld.fail(where + ": reached twice, the node hierarchy has a cycle or a shared child");
   ld.visited[size_t(index)] = true;
-  const glm::dmat4 world = parent * localTransform(ld, node, where);
+  const glm::dmat4 local = localTransform(ld, node, where);
+  const glm::dmat4 world = parent * local;
+  Scene& s = ld.scene;
+  const size_t instances = s.instances.size(), lights = s.lights.size(), cameras = s.cameras.size();
   addMeshInstances(ld, node, world, where, name);
   addLight(ld, node, world, where);
   addCamera(ld, node, world, where);
+  SceneNode placed = restPose(node, local, name, parentNode);
+  placed.instances = addedSince(instances, s.instances);
+  placed.lights = addedSince(lights, s.lights);
+  placed.cameras = addedSince(cameras, s.cameras);
+  ld.sceneNodeOf[size_t(index)] = int(s.nodes.size());
+  s.nodes.push_back(std::move(placed));
   return world;
 }
 
 // Depth-first, parents before children, with an explicit stack: a file may nest nodes
 // thousands deep, which recursion would turn into a stack overflow.
 void placeTree(Loader& ld, int root) {
-  std::vector<std::pair<int, glm::dmat4>> pending = {{root, glm::dmat4(1.0)}};
+  struct Pending {
+    int index;
+    glm::dmat4 parent;
+    int parentNode;  // in Scene::nodes
+  };
+  std::vector<Pending> pending = {{root, glm::dmat4(1.0), -1}};
   while (!pending.empty()) {
-    const auto [index, parent] = pending.back();
+    const Pending p = pending.back();
     pending.pop_back();
-    const glm::dmat4 world = placeNode(ld, index, parent);
-    const std::vector<int>& children = ld.model.nodes[size_t(index)].children;
+    const glm::dmat4 world = placeNode(ld, p.index, p.parent, p.parentNode);
+    const int placed = ld.sceneNodeOf[size_t(p.index)];
+    const std::vector<int>& children = ld.model.nodes[size_t(p.index)].children;
     for (auto child = children.rbegin(); child != children.rend(); ++child)
-      pending.emplace_back(*child, world);
+      pending.push_back({*child, world, placed});
   }
 }
 
@@ -1270,11 +1311,11 @@ std::vector<int> rootNodes(const Loader& ld) {
 
 // What the file holds that photovr does not play: said in one line each, since the scene
 // renders without it (in its bind pose, at time 0) and would otherwise look merely wrong.
-void warnNotPlayed(Loader& ld) {
+void warnNotPlayed(Loader& ld, size_t weightChannels) {
   const tg::Model& m = ld.model;
-  if (!m.animations.empty())
-    ld.warn(std::to_string(m.animations.size()) +
-            " animation(s) not played (photovr renders the scene at rest)");
+  if (weightChannels > 0)
+    ld.warn(std::to_string(weightChannels) +
+            " animation channel(s) of morph target weights not played");
   if (!m.skins.empty())
     ld.warn(std::to_string(m.skins.size()) + " skin(s) not applied (meshes in their bind pose)");
   size_t morphed = 0;
@@ -1283,6 +1324,85 @@ void warnNotPlayed(Loader& ld) {
   if (morphed > 0)
     ld.warn(std::to_string(morphed) +
             " primitive(s) with morph targets: targets not applied (base geometry)");
+}
+
+// ---------------------------------------------------------------------------------------
+// Animations (glTF 2.0 §3.11; played by core/animation.h)
+
+Interpolation interpolationOf(const Loader& ld, const std::string& name, const std::string& where) {
+  if (name.empty() || name == "LINEAR") return Interpolation::Linear;
+  if (name == "STEP") return Interpolation::Step;
+  if (name == "CUBICSPLINE") return Interpolation::CubicSpline;
+  ld.fail(where + ": unknown interpolation '" + name + "'");
+}
+
+// §3.11: key times are scalar floats, strictly increasing; each key holds one value, or
+// three (in-tangent, value, out-tangent) for a cubic spline.
+void readSampler(const Loader& ld, const tg::AnimationSampler& sampler, AnimationChannel& c,
+                 const std::string& where) {
+  c.interpolation = interpolationOf(ld, sampler.interpolation, where);
+  for (const glm::vec1& t : readVectors<1>(ld, sampler.input, where + " input"))
+    c.times.push_back(t.x);
+  for (size_t k = 0; k < c.times.size(); ++k)
+    if (!std::isfinite(c.times[k]) || (k > 0 && !(c.times[k] > c.times[k - 1])))
+      ld.fail(where + ": key times must be finite and strictly increasing");
+  if (c.path == AnimationPath::Rotation) {
+    for (const glm::vec4& v : readVectors<4>(ld, sampler.output, where + " output"))
+      c.values.push_back(v);
+  } else {
+    for (const glm::vec3& v : readVectors<3>(ld, sampler.output, where + " output"))
+      c.values.emplace_back(v, 0.0f);
+  }
+  const size_t perKey = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  if (c.times.empty() || c.values.size() != perKey * c.times.size())
+    ld.fail(where + ": " + std::to_string(c.values.size()) + " output values for " +
+            std::to_string(c.times.size()) + " key times (expected " + std::to_string(perKey) +
+            " per key, at least one key)");
+  for (const glm::vec4& v : c.values)
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))
+      ld.fail(where + ": non-finite output value");
+}
+
+// One channel, or none when it targets what photovr does not animate (counted: weights).
+void readChannel(Loader& ld, const tg::Animation& a, const tg::AnimationChannel& ch, Animation& out,
+                 size_t& weightChannels, const std::string& where) {
+  if (ch.target_path == "weights") {
+    ++weightChannels;
+    return;
+  }
+  const std::map<std::string, AnimationPath> paths = {{"translation", AnimationPath::Translation},
+                                                      {"rotation", AnimationPath::Rotation},
+                                                      {"scale", AnimationPath::Scale}};
+  const auto path = paths.find(ch.target_path);
+  if (path == paths.end()) ld.fail(where + ": unknown target path '" + ch.target_path + "'");
+  if (!inRange(ch.target_node, ld.model.nodes))
+    ld.fail(where + ": target node " + std::to_string(ch.target_node) + " out of range");
+  const int node = ld.sceneNodeOf[size_t(ch.target_node)];
+  if (node < 0) return;  // a node of another scene
+  if (ld.scene.nodes[size_t(node)].hasMatrix)
+    ld.fail(where + ": targets node '" + ld.scene.nodes[size_t(node)].name +
+            "', which has a matrix (§3.11: animated nodes have TRS only)");
+  if (!inRange(ch.sampler, a.samplers))
+    ld.fail(where + ": sampler " + std::to_string(ch.sampler) + " out of range");
+  AnimationChannel c;
+  c.node = node;
+  c.path = path->second;
+  readSampler(ld, a.samplers[size_t(ch.sampler)], c, where);
+  out.channels.push_back(std::move(c));
+}
+
+void readAnimations(Loader& ld) {
+  size_t weightChannels = 0;
+  for (size_t i = 0; i < ld.model.animations.size(); ++i) {
+    const tg::Animation& a = ld.model.animations[i];
+    Animation out;
+    out.name = a.name.empty() ? "animation#" + std::to_string(i) : a.name;
+    for (size_t k = 0; k < a.channels.size(); ++k)
+      readChannel(ld, a, a.channels[k], out, weightChannels,
+                  "animation " + named(out.name) + " channel " + std::to_string(k));
+    if (!out.channels.empty()) ld.scene.animations.push_back(std::move(out));
+  }
+  warnNotPlayed(ld, weightChannels);
 }
 
 }  // namespace
@@ -1302,7 +1422,7 @@ Scene loadGltf(const std::string& path) {
     ld.scene.materials.push_back(convertMaterial(ld, model.materials[i], i));
   for (int root : rootNodes(ld)) placeTree(ld, root);
   if (ld.scene.meshes.empty()) ld.fail("contains no triangle meshes");
-  warnNotPlayed(ld);
+  readAnimations(ld);
   // Finite transforms can still carry vertices past float range (a matrix of 1e38s):
   // every later stage would see infinities.
   if (!storePlacement(ld.scene, ld.placed))

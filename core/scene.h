@@ -11,6 +11,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "core/animation.h"
+
 namespace photovr {
 
 // An image decoded to 8-bit RGBA as stored in the file. Whether it is sRGB-encoded is a
@@ -204,6 +206,10 @@ struct Scene {
     bool read = false;
   };
   std::vector<Extension> extensions;
+  // The file's node hierarchy and its animations (core/animation.h): poseScene moves the
+  // instances, lights and cameras the animated nodes carry. Empty for built-in scenes.
+  std::vector<SceneNode> nodes;
+  std::vector<Animation> animations;
   // Where this scene's coordinate zero lies in the coordinates of the file it came from
   // (metres, double): a far-away file is re-based near its content so that floats keep
   // their precision (core/scene_transform.h); translateScene keeps it up to date.

@@ -159,6 +159,9 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
       << count(triangles) << " triangles stored)\n";
   out << "instances: " << count(scene.instances.size()) << " (" << count(instanced)
       << " triangles instanced; " << count(shared) << " meshes instanced more than once)\n";
+  for (const Animation& a : scene.animations)
+    out << "animation: '" << a.name << "', " << fmt("%.2f s", a.duration()) << ", "
+        << a.channels.size() << " node channel(s) (render --time T poses it)\n";
 }
 
 void describeMaterials(std::ostream& out, const Scene& scene) {
@@ -261,7 +264,8 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
   out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
   out << "  any-hit filter: " << count(f.filteredMeshes) << " of " << count(scene.meshes.size())
       << " meshes (MASK, BLEND or single-sided; the rest have none)\n";
-  out << "  BVH refit: never (static scene: photovr plays no animation)\n";
+  out << (isAnimated(scene) ? "  BVH refit: never (a render poses the scene once, at --time)\n"
+                            : "  BVH refit: never (static scene)\n");
   out << "  sky pixels: "
       << (f.environment ? "environment looked up, not traced (hybrid)"
                         : std::string("black, not traced (hybrid)"))

@@ -10,15 +10,17 @@ const char* const kHeadHelp =
     "  --camera N|NAME        scene camera by index or name (default: the first, else a\n"
     "                         view framing the scene)\n"
     "  --look-from X,Y,Z      camera position (overrides the scene camera's)\n"
-    "  --look-at X,Y,Z        point to look at (overrides the orientation)\n";
+    "  --look-at X,Y,Z        point to look at (overrides the orientation)\n"
+    "  --time T               scene time in seconds: animated glTF files are posed there,\n"
+    "                         each animation looping over its own length (default 0)\n";
 
 const char* const kEyesHelp =
     "  --fovy DEG             vertical field of view for --eyes mono (1..179)\n"
     "  --eyes stereo|mono     stereo: both eyes around the camera, 63.5 mm IPD, DK2 FOV\n"
     "                         (default); mono: the camera's own symmetric frustum\n";
 
-const std::set<std::string> kViewOptions = {"--camera", "--look-from", "--look-at", "--fovy",
-                                            "--eyes"};
+const std::set<std::string> kViewOptions = {"--camera", "--look-from", "--look-at",
+                                            "--fovy",   "--eyes",      "--time"};
 
 namespace {
 

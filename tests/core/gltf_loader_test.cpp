@@ -389,16 +389,18 @@ TEST(GltfLoader, BasisTexturesSayThereIsNoDebianDecoder) {
 }
 
 // Issue 23: a skinned, animated model rendered in its bind pose without a word.
-TEST(GltfLoader, AnimationsSkinsAndMorphTargetsNotPlayedAreWarnings) {
+// Node animations play (tests/core/animation_test.cpp); what does not is named.
+TEST(GltfLoader, WeightAnimationsSkinsAndMorphTargetsNotPlayedAreWarnings) {
   std::string json = replaced(triangleGltf(), R"("nodes":[{"mesh":0,"name":"tri"}],)",
                               R"("nodes":[{"mesh":0,"name":"tri"}],
-"animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],
+"animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"weights"}}],
   "samplers":[{"input":0,"output":0}]}],
 "skins":[{"joints":[0]}],)");
   json = replaced(json, R"("attributes":{"POSITION":0},"indices":1)",
                   R"("attributes":{"POSITION":0},"indices":1,"targets":[{"POSITION":0}])");
   const Scene scene = loadGltf(writeGltf("animated.gltf", json));
-  EXPECT_TRUE(anyContains(scene.warnings, "animated.gltf", "1 animation(s) not played"));
+  EXPECT_TRUE(anyContains(scene.warnings, "animated.gltf",
+                          "1 animation channel(s) of morph target weights not played"));
   EXPECT_TRUE(anyContains(scene.warnings, "animated.gltf", "1 skin(s) not applied"));
   EXPECT_TRUE(anyContains(scene.warnings, "animated.gltf", "1 primitive(s) with morph targets"));
 }

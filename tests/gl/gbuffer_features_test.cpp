@@ -150,6 +150,32 @@ TEST(GBufferFeatures, MotionVectorsPointToLastFramesPixel) {
   }
 }
 
+// Issue 23: an animated object's motion, not the camera's. The rectangle's node moves +x at
+// 1 m/s (a linear translation channel); posed at 0.5 s with the previous pose at 0.4 s, a
+// point now at the centre was 0.1 m to the left a frame ago, focal * 0.1 / 1 pixels.
+TEST(GBufferFeatures, AnimatedObjectsMotionVectorsPointToLastFramesPixel) {
+  const EyeCamera cam = monoCamera(32, 32);
+  Scene s = singleRectangle(plainMaterial(glm::vec3(1)), glm::mat4(1.0f));
+  SceneNode node;
+  node.scale = glm::dvec3(5.0);
+  node.instances = {0};
+  s.nodes.push_back(node);
+  AnimationChannel move;
+  move.node = 0;
+  move.path = AnimationPath::Translation;
+  move.times = {0.0f, 2.0f};
+  move.values = {{0, 0, -1, 0}, {2, 0, -1, 0}};
+  s.animations.push_back({"move", {move}});
+  poseScene(s, 0.5, 0.4);
+  const Frame f = render(s, cam);
+  const float focalPx = cam.width / (cam.fov.left + cam.fov.right);
+  for (const glm::vec2& m : f.eye[0].motion) {
+    // Half-float storage of ~2.9 px: 2^-11 relative; the poses' float rounding is far below.
+    ASSERT_NEAR(m.x, -0.1f * focalPx, 4.0f * kHalfRel * 0.1f * focalPx);
+    ASSERT_NEAR(m.y, 0.0f, 1e-3f);
+  }
+}
+
 TEST(GBufferFeatures, SideBySideFallbackMatchesLayeredRouting) {
   StereoRig rig;
   Scene s = singleRectangle(plainMaterial(glm::vec3(0.3f, 0.6f, 0.9f)),

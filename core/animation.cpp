@@ -1,0 +1,149 @@
+#include "core/animation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/scene.h"
+
+namespace photovr {
+namespace {
+
+glm::dquat asQuat(const glm::dvec4& v) {
+  return glm::dquat(v.w, v.x, v.y, v.z);  // glTF stores (x, y, z, w); glm takes w first
+}
+
+glm::dvec4 asVec(const glm::dquat& q) {
+  return glm::dvec4(q.x, q.y, q.z, q.w);
+}
+
+glm::dvec4 normalizedRotation(const glm::dvec4& v) {
+  const double length = glm::length(v);
+  return length > 0.0 ? v / length : glm::dvec4(0.0, 0.0, 0.0, 1.0);
+}
+
+// Key k's value: the middle of the three a cubic spline stores per key.
+glm::dvec4 keyValue(const AnimationChannel& c, size_t k) {
+  return glm::dvec4(c.values[c.interpolation == Interpolation::CubicSpline ? 3 * k + 1 : k]);
+}
+
+// Appendix C, cubic spline: Hermite between keys k and k+1 with the out-tangent of k and
+// the in-tangent of k+1, both scaled by the key interval td.
+glm::dvec4 hermite(const AnimationChannel& c, size_t k, double s, double td) {
+  const double s2 = s * s, s3 = s2 * s;
+  const glm::dvec4 v0(c.values[3 * k + 1]), b0(c.values[3 * k + 2]);
+  const glm::dvec4 a1(c.values[3 * k + 3]), v1(c.values[3 * k + 4]);
+  return (2 * s3 - 3 * s2 + 1) * v0 + td * (s3 - 2 * s2 + s) * b0 + (-2 * s3 + 3 * s2) * v1 +
+         td * (s3 - s2) * a1;
+}
+
+}  // namespace
+
+float Animation::duration() const {
+  float d = 0.0f;
+  for (const AnimationChannel& c : channels)
+    if (!c.times.empty()) d = std::max(d, c.times.back());
+  return d;
+}
+
+glm::dvec4 sampleChannel(const AnimationChannel& c, double t) {
+  const size_t keys = c.times.size();
+  if (keys == 0) return glm::dvec4(0.0);
+  if (!(t > double(c.times.front())) || keys == 1) return keyValue(c, 0);
+  if (t >= double(c.times.back())) return keyValue(c, keys - 1);
+  // The key interval [t_k, t_k+1) that holds t.
+  const size_t k =
+      size_t(std::upper_bound(c.times.begin(), c.times.end(), float(t)) - c.times.begin()) - 1;
+  const double t0 = c.times[k], td = double(c.times[k + 1]) - t0;
+  const double s = std::clamp((t - t0) / td, 0.0, 1.0);
+  const bool rotation = c.path == AnimationPath::Rotation;
+  switch (c.interpolation) {
+    case Interpolation::Step:
+      return keyValue(c, k);
+    case Interpolation::CubicSpline: {
+      const glm::dvec4 v = hermite(c, k, s, td);
+      return rotation ? normalizedRotation(v) : v;
+    }
+    case Interpolation::Linear:
+      break;
+  }
+  if (rotation) return asVec(glm::slerp(asQuat(keyValue(c, k)), asQuat(keyValue(c, k + 1)), s));
+  return glm::mix(keyValue(c, k), keyValue(c, k + 1), s);
+}
+
+bool isAnimated(const Scene& scene) {
+  for (const Animation& a : scene.animations)
+    if (!a.channels.empty()) return true;
+  return false;
+}
+
+namespace {
+
+// Every node's local TRS at time t: the rest pose with each animation's channels applied.
+std::vector<SceneNode> localPoses(const Scene& scene, double t) {
+  std::vector<SceneNode> nodes = scene.nodes;
+  for (const Animation& a : scene.animations) {
+    const double duration = double(a.duration());
+    const double local = duration > 0.0 ? t - duration * std::floor(t / duration) : 0.0;
+    for (const AnimationChannel& c : a.channels) {
+      if (c.node < 0 || size_t(c.node) >= nodes.size()) continue;
+      SceneNode& n = nodes[size_t(c.node)];
+      const glm::dvec4 v = sampleChannel(c, local);
+      if (c.path == AnimationPath::Translation) n.translation = glm::dvec3(v);
+      if (c.path == AnimationPath::Rotation) n.rotation = asQuat(normalizedRotation(v));
+      if (c.path == AnimationPath::Scale) n.scale = glm::dvec3(v);
+    }
+  }
+  return nodes;
+}
+
+glm::dmat4 localMatrix(const SceneNode& n) {
+  if (n.hasMatrix) return n.matrix;
+  return glm::translate(glm::dmat4(1.0), n.translation) * glm::mat4_cast(n.rotation) *
+         glm::scale(glm::dmat4(1.0), n.scale);
+}
+
+// World transforms in the scene's coordinates: the file's, re-based at Scene::origin.
+std::vector<glm::dmat4> worldPoses(const Scene& scene, double t) {
+  const std::vector<SceneNode> nodes = localPoses(scene, t);
+  const glm::dmat4 toScene = glm::translate(glm::dmat4(1.0), -scene.origin);
+  std::vector<glm::dmat4> world(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const int p = nodes[i].parent;
+    const glm::dmat4& parent = p >= 0 && size_t(p) < i ? world[size_t(p)] : toScene;
+    world[i] = parent * localMatrix(nodes[i]);
+  }
+  return world;
+}
+
+glm::quat rotationOf(const glm::dmat4& world) {
+  glm::dmat3 r(world);
+  for (int c = 0; c < 3; ++c) r[c] = glm::normalize(r[c]);  // drop the node's scale
+  return glm::quat(glm::normalize(glm::quat_cast(r)));
+}
+
+}  // namespace
+
+void poseScene(Scene& scene, double t, double previousT) {
+  const std::vector<glm::dmat4> now = worldPoses(scene, t);
+  const std::vector<glm::dmat4> before = worldPoses(scene, previousT);
+  for (size_t i = 0; i < scene.nodes.size(); ++i) {
+    const SceneNode& n = scene.nodes[i];
+    for (int k : n.instances) {
+      scene.instances[size_t(k)].transform = glm::mat4(now[i]);
+      scene.instances[size_t(k)].previousTransform = glm::mat4(before[i]);
+    }
+    for (int k : n.lights) {
+      Light& l = scene.lights[size_t(k)];
+      l.position = glm::vec3(now[i][3]);
+      l.direction = glm::vec3(glm::normalize(glm::dmat3(now[i]) * glm::dvec3(0, 0, -1)));
+    }
+    for (int k : n.cameras) {
+      scene.cameras[size_t(k)].position = glm::vec3(now[i][3]);
+      scene.cameras[size_t(k)].orientation = rotationOf(now[i]);
+    }
+  }
+}
+
+}  // namespace photovr

@@ -1,0 +1,63 @@
+// glTF animations (glTF 2.0 §3.11, interpolation as its Appendix C): node translation,
+// rotation and scale channels, sampled at a scene time, and the scene posed there.
+//
+// The loader keeps the file's node hierarchy (SceneNode) when the file animates it; posing
+// recomposes every node's world transform in double, re-based at Scene::origin, and writes
+// the instances', lights' and cameras' float transforms, with the previous time's pose in
+// Instance::previousTransform for the G-buffer's motion vectors.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace photovr {
+
+struct Scene;
+
+// One node of the file's hierarchy, parents stored before their children.
+struct SceneNode {
+  std::string name;
+  int parent = -1;  // index into Scene::nodes
+  // The rest pose: a matrix node is never animated (glTF 2.0 §3.11: "When a node is
+  // targeted for animation, only TRS properties may be present").
+  bool hasMatrix = false;
+  glm::dmat4 matrix{1.0};
+  glm::dvec3 translation{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 scale{1.0};
+  std::vector<int> instances, lights, cameras;  // what the node carries (Scene indices)
+};
+
+enum class AnimationPath { Translation, Rotation, Scale };
+enum class Interpolation { Step, Linear, CubicSpline };
+
+struct AnimationChannel {
+  int node = -1;  // index into Scene::nodes
+  AnimationPath path = AnimationPath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;       // seconds, strictly increasing
+  std::vector<glm::vec4> values;  // xyz (translation, scale) or xyzw (rotation); cubic
+                                  // splines hold in-tangent, value, out-tangent per key
+};
+
+struct Animation {
+  std::string name;
+  std::vector<AnimationChannel> channels;
+  float duration() const;  // the last key time of any channel
+};
+
+// The channel's value at time t (seconds), as Appendix C defines it: held at the first and
+// last keys outside their range; rotations slerped (linear) or normalised (cubic).
+glm::dvec4 sampleChannel(const AnimationChannel& channel, double t);
+
+// Whether the scene moves: it has an animation with at least one channel.
+bool isAnimated(const Scene& scene);
+
+// Poses the scene at time t (every animation playing at once, each looping over its own
+// duration), with the pose at 'previousT' as every instance's previous transform.
+void poseScene(Scene& scene, double t, double previousT);
+
+}  // namespace photovr
