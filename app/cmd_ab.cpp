@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <utility>
 
 #include "gl/render_context.h"
@@ -25,7 +26,12 @@ namespace photovr::app {
 namespace {
 
 using harness::loadOrRenderReference;
+using harness::parseShard;
 using harness::Reference;
+using harness::ReferenceSpec;
+using harness::renderReferenceShard;
+using harness::ShardId;
+using harness::ShardResult;
 
 const char* const kAbHelp =
     "usage: photovr ab [options]\n"
@@ -45,11 +51,15 @@ const char* const kReferenceHelp =
     "cache ($PHOTOVR_CACHE_DIR or ~/.cache/photovr), keyed by scene content and settings.\n"
     "Stopping and re-running continues without losing samples.\n"
     "  --scene NAME|FILE --width W --height H --bounces N --env FILE  (as for ab)\n"
-    "  --spp N                total samples per pixel wanted (default 256)\n";
+    "  --spp N                total samples per pixel wanted (default 256)\n"
+    "  --shard K/N            render only shard K of N (frames K, K+N, ...), as one job of\n"
+    "                         N (scripts/cluster/); the job that completes the set merges\n"
+    "                         them into the reference, bit for bit the unsharded one\n";
 
 struct AbRequest {
   RenderRequest render;
   int referenceSpp = 256;
+  std::optional<ShardId> shard;  // reference --shard K/N
 };
 
 AbRequest parseAb(const Args& args, bool referenceOnly) {
@@ -57,6 +67,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
                                   "--spp",           "--frames",  "--bounces",  "--seed",
                                   "--reference-spp", "--backend", "--exposure", "--out"};
   if (!referenceOnly) valued.insert("--stereo-reuse");
+  if (referenceOnly) valued.insert("--shard");
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
   if (!o.positional().empty()) throw UsageError("unexpected argument '" + o.positional()[0] + "'");
@@ -72,6 +83,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   r.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   r.backend = o.text("--backend", "");
   a.referenceSpp = o.integer("--reference-spp", 256, 1, 1 << 20);
+  if (o.has("--shard")) a.shard = parseShard(o.text("--shard", ""));
   r.stereoReuse = parseStereoReuse(o);
   const std::string stem = r.sceneSpec.substr(r.sceneSpec.find_last_of('/') + 1);
   r.outDir = o.text("--out", "out/ab-" + stem.substr(0, stem.find('.')));
@@ -268,8 +280,20 @@ int runReference(const Args& args) {
   }
   const AbRequest a = parseAb(args, true);
   const RenderRequest& r = a.render;
-  const Reference ref =
-      loadOrRenderReference({&r.scene, r.view, r.width, r.height, r.bounces}, r.spp);
+  const ReferenceSpec spec{&r.scene, r.view, r.width, r.height, r.bounces};
+  if (a.shard) {
+    const ShardResult s = renderReferenceShard(spec, r.spp, *a.shard);
+    if (!s.complete) {
+      std::printf("reference: shard %d/%d done in %s; the set is not complete yet\n",
+                  a.shard->index, a.shard->count, s.reference.directory.c_str());
+      return 0;
+    }
+    std::printf("reference: %d spp in %s (merged; estimated relMSE %.2e)\n",
+                s.reference.samplesPerPixel, s.reference.directory.c_str(),
+                s.reference.estimatedRelMse);
+    return 0;
+  }
+  const Reference ref = loadOrRenderReference(spec, r.spp);
   std::printf("reference: %d spp in %s\n", ref.samplesPerPixel, ref.directory.c_str());
   return 0;
 }

@@ -1,7 +1,8 @@
 // Converged path-traced references, cached by scene content and render settings, so that
 // `ab` and the benches compare against the same image and a long render is paid once.
-// Accumulation is resumable: every chunk of frames is saved (atomically) with its count,
-// and a later call continues from there without losing samples.
+// Accumulation is resumable and can be split into jobs: frames are accumulated in shards
+// (reference_shards.h), each saved atomically every few frames; merging a complete set
+// gives the same reference, bit for bit, however it was split.
 #pragma once
 
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "core/view.h"
 #include "core/scene.h"
+#include "harness/reference_shards.h"
 
 namespace photovr::harness {
 
@@ -24,6 +26,7 @@ struct Reference {
   std::vector<std::vector<glm::vec3>> eyes;  // mean radiance per eye, rows bottom-up
   int samplesPerPixel = 0;
   std::string directory;
+  double estimatedRelMse = 0.0;  // of the mean, from the frames' spread (when merged now)
 };
 
 // Cache root: $PHOTOVR_CACHE_DIR, else $XDG_CACHE_HOME/photovr, else ~/.cache/photovr.
@@ -31,8 +34,17 @@ std::string referenceCacheRoot();
 std::string referenceKey(const ReferenceSpec& spec);
 
 // Loads the cached reference and renders more samples until it has at least 'spp' per
-// pixel. Progress goes to stderr.
+// pixel (as shard 0/1, reference_shards.h; a complete set of other jobs' shards is merged
+// instead). Progress goes to stderr.
 Reference loadOrRenderReference(const ReferenceSpec& spec, int spp);
+
+// One job of a sharded reference: renders shard 'shard''s share of the frames 'spp' needs,
+// then merges when every shard of its count is there. 'complete' says whether it did.
+struct ShardResult {
+  Reference reference;  // the merged reference when complete
+  bool complete = false;
+};
+ShardResult renderReferenceShard(const ReferenceSpec& spec, int spp, const ShardId& shard);
 
 // Independent of the seeds users pass (default 0), so a reference's noise never
 // correlates with the image it judges.

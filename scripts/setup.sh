@@ -18,6 +18,7 @@ PACKAGES=(
   libhidapi-dev
   libimgui-dev
   xvfb xauth  # a virtual display for the glfw backend's tests
+  parallel  # reference shards as GNU parallel jobs (scripts/cluster/, their tests)
   gnuplot-nox  # bench plots (photovr bench)
 )
 

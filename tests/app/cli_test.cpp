@@ -234,16 +234,20 @@ TEST(Cli, OutputFolderThatIsAFileIsRefusedUpFront) {
 }
 
 // A corrupt frame count in the reference cache (negative) crashed `reference`; the cache
-// is now rebuilt from scratch.
+// is now rebuilt from scratch. Its shard file (the sums the mean is merged from) corrupt
+// too, nothing is left to merge.
 TEST(Cli, CorruptReferenceCacheIsRebuilt) {
   const std::string cache = tempDir("corrupt-cache");
   const std::string args =
       "reference --scene cornell --width 8 --height 8 --bounces 1 --spp 4 --backend osmesa";
   ASSERT_EQ(runPhotovr(args, "PHOTOVR_CACHE_DIR=" + cache).status, 0);
-  int counters = 0;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
+  int counters = 0, shards = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(cache)) {
     if (e.path().filename() == "frames.txt") std::ofstream(e.path()) << "-5\n", ++counters;
+    if (e.path().filename() == "shard-0-of-1.bin") std::ofstream(e.path()) << "junk\n", ++shards;
+  }
   ASSERT_EQ(counters, 1);
+  ASSERT_EQ(shards, 1);
   const auto r = runPhotovr(args, "PHOTOVR_CACHE_DIR=" + cache);
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("0 -> 4 spp"), std::string::npos) << r.output;

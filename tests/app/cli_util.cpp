@@ -8,10 +8,9 @@
 
 namespace photovr::testing {
 
-CommandResult runPhotovr(const std::string& args, const std::string& prefix) {
-  const std::string cmd = prefix + " " + std::string(PHOTOVR_BINARY) + " " + args + " 2>&1";
+CommandResult runCommand(const std::string& command) {
   CommandResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
   size_t n;
@@ -19,6 +18,10 @@ CommandResult runPhotovr(const std::string& args, const std::string& prefix) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   return r;
+}
+
+CommandResult runPhotovr(const std::string& args, const std::string& prefix) {
+  return runCommand(prefix + " " + std::string(PHOTOVR_BINARY) + " " + args);
 }
 
 std::string tempDir(const std::string& name) {

@@ -10,6 +10,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
+// A shell command line, stdout and stderr together.
+CommandResult runCommand(const std::string& command);
+
 // 'args' is appended to the binary's path as is (shell syntax); 'prefix' goes before it
 // (e.g. "env -u NAME").
 CommandResult runPhotovr(const std::string& args, const std::string& prefix = "");
