@@ -55,22 +55,22 @@ struct LoadedScene {
   }
 };
 
+}  // namespace
+
 // Each configuration in its own process (harness/bench_child.h): scene, GL context, renderer.
-void runMatrix(const std::vector<BenchConfig>& matrix, bool quick, const std::string& backend,
-               BenchReport& report) {
-  for (const BenchConfig& c : matrix) {
-    report.configs.push_back(runInChild(c, [&] {
-      LoadedScene s(c.scene, quick, c.scored);
-      auto context = gl::createRenderContext(backend);
-      return runConfig(c, s.bench, *context);
-    }));
-    printConfig(report.configs.back());
-  }
+ConfigResult runBenchConfig(const BenchConfig& c, bool quick, const std::string& backend) {
+  ConfigResult r = runInChild(c, [&] {
+    LoadedScene s(c.scene, quick, c.scored);
+    auto context = gl::createRenderContext(backend);
+    return runConfig(c, s.bench, *context);
+  });
+  printConfig(r);
+  return r;
 }
 
 // After the last child: the limit figures, in this process.
-void measureLimits(const std::vector<std::string>& scenes, bool quick, const std::string& backend,
-                   BenchReport& report) {
+void measureBenchLimits(const std::vector<std::string>& scenes, bool quick,
+                        const std::string& backend, BenchReport& report) {
   auto context = gl::createRenderContext(backend);
   report.glRenderer = context->renderer(), report.glVersion = context->version();
   const BenchSize size = scoredSize(quick);
@@ -84,7 +84,19 @@ void measureLimits(const std::vector<std::string>& scenes, bool quick, const std
     report.glLimits.push_back(measureGlLimits(w, h));
 }
 
-}  // namespace
+void writeBenchReports(const BenchRequest& q, BenchReport& report) {
+  const std::string& dir = q.outDir;
+  report.machine = machineDescription(report.glRenderer);
+  for (const std::string& name : q.scenes) report.scenes.push_back(summarize(name, report.configs));
+  printSummary(report);
+  writeFrameCsv(report, dir + "/bench.csv");
+  writeConfigCsv(report, dir + "/bench_configs.csv");
+  writeJson(report, dir + "/bench.json");
+  writeMarkdown(report, dir + "/bench.md");
+  plot(dir);
+  std::printf("wrote %s/bench.csv, bench_configs.csv, bench.json, bench.md (%.0f s)\n", dir.c_str(),
+              report.wallSeconds);
+}
 
 std::vector<std::string> benchSceneList(const std::string& spec) {
   return sceneList(spec);
@@ -101,19 +113,11 @@ int runBenchMatrix(const BenchRequest& q) {
   const std::vector<BenchConfig> matrix = benchMatrix(q.scenes, report.quick, q.stereoReuse);
   std::printf("photovr bench%s: %zu configurations, each in its own process\n",
               report.quick ? " --quick" : "", matrix.size());
-  runMatrix(matrix, report.quick, q.backend, report);
-  measureLimits(q.scenes, report.quick, q.backend, report);
-  report.machine = machineDescription(report.glRenderer);
-  for (const std::string& name : q.scenes) report.scenes.push_back(summarize(name, report.configs));
+  for (const BenchConfig& c : matrix)
+    report.configs.push_back(runBenchConfig(c, q.quick, q.backend));
+  measureBenchLimits(q.scenes, report.quick, q.backend, report);
   report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  printSummary(report);
-  writeFrameCsv(report, dir + "/bench.csv");
-  writeConfigCsv(report, dir + "/bench_configs.csv");
-  writeJson(report, dir + "/bench.json");
-  writeMarkdown(report, dir + "/bench.md");
-  plot(dir);
-  std::printf("wrote %s/bench.csv, bench_configs.csv, bench.json, bench.md (%.0f s)\n", dir.c_str(),
-              report.wallSeconds);
+  writeBenchReports(q, report);
   return 0;
 }
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/bench_report.h"
 #include "hybrid/frame_settings.h"
 
 namespace photovr::harness {
@@ -32,5 +33,14 @@ std::vector<std::string> benchSceneList(const std::string& spec);
 // Runs the matrix (each configuration in a child process), the limit figures, and writes
 // the reports into outDir. Returns the exit status.
 int runBenchMatrix(const BenchRequest& request);
+
+// Its parts, which the jobs (harness/bench_jobs.h) run one at a time: one configuration in
+// a child process (the calling process must not have started threads); the limit figures
+// in this process; the reports from what a run gathered (its machine line, summaries,
+// CSV, JSON, markdown, plots).
+ConfigResult runBenchConfig(const BenchConfig& config, bool quick, const std::string& backend);
+void measureBenchLimits(const std::vector<std::string>& scenes, bool quick,
+                        const std::string& backend, BenchReport& report);
+void writeBenchReports(const BenchRequest& request, BenchReport& report);
 
 }  // namespace photovr::harness

@@ -9,13 +9,11 @@
 #          --scene atrium --width 256 --height 256 --spp 4096
 # A killed job re-run (same command) continues from its last saved frames.
 set -euo pipefail
-if [ $# -lt 4 ]; then
-  sed -n '2,12p' "$0" >&2
-  exit 2
-fi
+. "$(dirname "$0")/lib.sh"
+usage_unless 4 "$@"
+require_parallel
 shards=$1 jobs=$2 cache=$3 photovr=$4
 shift 4
-command -v parallel >/dev/null || { echo "reference_parallel.sh: GNU parallel is not installed (scripts/setup.sh installs it)" >&2; exit 1; }
 # --halt now,fail=1: one failed shard stops the set, and its exit status is the script's.
 # shellcheck disable=SC2086
 seq 0 $((shards - 1)) | parallel --will-cite --halt now,fail=1 -j "$jobs" ${PARALLEL_OPTS:-} \

@@ -41,8 +41,9 @@ bool samePixels(const std::string& a, const std::string& b) {
          std::memcmp(x.data.data(), y.data.data(), x.data.size() * sizeof(float)) == 0;
 }
 
-std::string unshardedReference() {
-  const std::string cache = tempDir("shards-unsharded");
+// Each test its own folder: ctest runs them at once.
+std::string unshardedReference(const std::string& test) {
+  const std::string cache = tempDir("shards-unsharded-" + test);
   const auto r = runPhotovr("reference" + kArgs, "PHOTOVR_CACHE_DIR=" + cache);
   EXPECT_EQ(r.status, 0) << r.output;
   return referenceDir(cache) + "/eye0.exr";
@@ -61,7 +62,7 @@ bool haveParallel() {
 
 TEST(ReferenceShards, FourShardsThroughGnuParallelEqualTheUnshardedReference) {
   if (!haveParallel()) GTEST_SKIP() << "GNU parallel missing (scripts/setup.sh installs it)";
-  const std::string unsharded = unshardedReference();
+  const std::string unsharded = unshardedReference("parallel");
   const std::string cache = tempDir("shards-parallel");
   const std::string out = parallelRun(cache, 4, 2);
   EXPECT_NE(out.find("64 spp"), std::string::npos) << out;  // one job merged the set
@@ -79,7 +80,7 @@ TEST(ReferenceShards, FourShardsThroughGnuParallelEqualTheUnshardedReference) {
 // that shard over. Both end at the unsharded reference.
 TEST(ReferenceShards, InterruptedAndCorruptShardsCompleteTheSameReference) {
   if (!haveParallel()) GTEST_SKIP() << "GNU parallel missing (scripts/setup.sh installs it)";
-  const std::string unsharded = unshardedReference();
+  const std::string unsharded = unshardedReference("resumed");
   const std::string cache = tempDir("shards-resumed");
   const std::string partial =
       " --scene cornell --width 16 --height 16 --bounces 2 --spp 32 --backend osmesa --eyes mono";
@@ -99,7 +100,7 @@ TEST(ReferenceShards, InterruptedAndCorruptShardsCompleteTheSameReference) {
 // file, atomically, and every merge of the same frames writes the same pixels.
 TEST(ReferenceShards, ConcurrentJobsOnOneEntryLeaveAValidReference) {
   if (!haveParallel()) GTEST_SKIP() << "GNU parallel missing (scripts/setup.sh installs it)";
-  const std::string unsharded = unshardedReference();
+  const std::string unsharded = unshardedReference("concurrent");
   const std::string cache = tempDir("shards-concurrent");
   const auto r =
       runCommand("(" + script() + " 4 4 " + cache + " " + PHOTOVR_BINARY + kArgs + " & " +

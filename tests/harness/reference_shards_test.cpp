@@ -8,17 +8,15 @@
 #include <random>
 
 #include "core/error.h"
+#include "tests/core/test_dir.h"
 
 namespace photovr::harness {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("photovr-shards-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
+std::string freshDir() {
+  return testing::freshTestDir("photovr_reference_shards").string();
 }
 
 TEST(ReferenceShardFiles, ShardsPartitionTheFrames) {
@@ -47,7 +45,7 @@ TEST(ReferenceShardFiles, AnySplitMergesToTheSameBits) {
   std::vector<std::vector<glm::vec3>> frames(12, std::vector<glm::vec3>(2));
   for (auto& f : frames)
     for (glm::vec3& p : f) p = glm::vec3(u(rng), u(rng) * 1e-4f, u(rng) * 1e4f);
-  const std::string dir = freshDir("split");
+  const std::string dir = freshDir();
   std::vector<MergedReference> merged;
   for (int count : {1, 3, 4}) {
     for (int k = 0; k < count; ++k) {
@@ -82,7 +80,7 @@ TEST(ReferenceShardFiles, AnySplitMergesToTheSameBits) {
 
 // A file from another view size, or cut short, is not loaded: that shard starts over.
 TEST(ReferenceShardFiles, MismatchedOrTruncatedFilesAreNotLoaded) {
-  const std::string dir = freshDir("mismatch");
+  const std::string dir = freshDir();
   ShardSums s({0, 2}, 4, 4, 2);
   s.add(1, std::vector<glm::vec3>(16, glm::vec3(1.0f)));
   s.frameDone();
