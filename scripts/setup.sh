@@ -18,7 +18,8 @@ PACKAGES=(
   libhidapi-dev
   libimgui-dev
   xvfb xauth  # a virtual display for the glfw backend's tests
-  parallel  # reference shards as GNU parallel jobs (scripts/cluster/, their tests)
+  parallel  # reference shards and bench jobs with GNU parallel (scripts/cluster/, their tests)
+  slurm-wlm munge  # a one-node Slurm cluster for the array-job recipes' test (scripts/cluster/)
   gnuplot-nox  # bench plots (photovr bench)
 )
 
