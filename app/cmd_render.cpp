@@ -46,6 +46,10 @@ const char* const kRenderHelp =
     "  --stereo-reuse on|off  stereo frames: the right eye reuses the left eye's paths beyond\n"
     "                         each shared first hit (default on; docs/ARCHITECTURE.md,\n"
     "                         \"Stereo path reuse\")\n"
+    "  --time T               an animated glTF scene posed at T seconds (default 0)\n"
+    "  --play                 animated scene: frame f shows time T + f / 75 s, so --frames F\n"
+    "                         accumulates F / 75 s of motion (motion blur); --hmd plays the\n"
+    "                         scene on the sequence's clock without it\n"
     "  --converge E           stop accumulating frames once the estimated relMSE of the\n"
     "                         mean is below E (static view; default 0 = render every frame)\n"
     "  --no-skip LIST         turn off skips of work the scene does not need, to measure\n"
@@ -72,7 +76,7 @@ RenderRequest parseRenderRequest(const Args& args) {
       "--mode",    "--spp",      "--bounces", "--frames",   "--seed",    "--exposure",
       "--denoise", "--sampling", "--no-skip", "--converge", "--sampler", "--stereo-reuse"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
-  const Options o(args, valued, {});
+  const Options o(args, valued, {"--play"});
   if (!o.positional().empty())
     throw UsageError("render: unexpected argument '" + o.positional()[0] + "'");
   RenderRequest r;
@@ -109,7 +113,12 @@ RenderRequest parseRenderRequest(const Args& args) {
   createOutputFolder(r.outDir);
   r.scene = loadSceneSpec(r.sceneSpec);
   applyEnvironmentOption(r.scene, o.text("--env", ""));
-  applyTimeOption(r.scene, o);
+  r.time = applyTimeOption(r.scene, o);
+  r.play = o.has("--play");
+  if (r.play && (r.mode == RenderMode::GBuffer || r.converge > 0.0))
+    throw UsageError("--play: needs a traced mode (hybrid or pt) and no --converge");
+  if (r.play && !isAnimated(r.scene))
+    std::cerr << "photovr: warning: --play: the scene has no animation; it is rendered as is\n";
   warnAboutScene(r.scene);
   r.view = resolveView(r.scene, o);
   r.view.head = recenterOnView(r.scene, r.view.head);  // camera-relative: full precision
@@ -134,7 +143,7 @@ int runRender(const Args& args) {
   Args rest = args;
   const HmdSpec hmd = extractHmdOption(rest);
   const HmdSequenceOptions sequence = extractHmdSequenceOptions(rest, hmd);
-  const RenderRequest request = parseRenderRequest(rest);
+  RenderRequest request = parseRenderRequest(rest);
   if (hmd.kind != "none") {
     if (request.converge > 0.0)
       throw UsageError("--converge: not with --hmd (the head moves, so frames do not converge)");

@@ -85,6 +85,7 @@ struct ViewConfig {
   FrameSettings settings;  // mode, spp, bounces, sample map, denoiser; seed 0, Sobol
   bool reproject = true, overlay = true, rotationGiven = false;
   float exposure = 1.0f;
+  double sceneStart = 0.0;  // --time: where an animated scene's clock starts
   std::string outDir = ".", screenshot;
 };
 
@@ -131,7 +132,7 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("--screenshot: needs --frames N (it saves the last refresh)");
   c.scene = loadSceneSpec(o.text("--scene", "atrium"));
   applyEnvironmentOption(c.scene, o.text("--env", ""));
-  applyTimeOption(c.scene, o);
+  c.sceneStart = applyTimeOption(c.scene, o);
   warnAboutScene(c.scene);
   c.view = resolveView(c.scene, o);
   if (!c.view.stereo || o.has("--fovy"))
@@ -254,6 +255,7 @@ struct Session {
     p.forDisplay = true;
     pipeline = std::make_unique<FramePipeline>(c.scene, p, context.get());
     pipeline->prepare(c.settings);
+    if (isAnimated(c.scene)) pipeline->animate(c.scene);  // plays on the wall clock
     compositor =
         std::make_unique<display::Compositor>(c.headset, c.eyes, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
@@ -331,8 +333,11 @@ int runSession(ViewConfig& c) {
     }
     if (!s.pipeline->busy()) {
       const uint32_t index = started++;
+      // The scene clock runs from --time in real time, like the head's: a frame shows the
+      // scene as it is when the frame starts.
+      const double sceneTime = c.sceneStart + (hmd::hostSeconds() - s.head.start);
       s.pipeline->start({s.eyesAt(s.head.now(), samplePosition(SamplerKind::Sobol, index)), 2,
-                         index, c.settings});
+                         index, c.settings, sceneTime});
     }
     if (s.shown) s.composite(in.framebufferSize);
     if (s.overlay) {

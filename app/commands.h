@@ -25,10 +25,9 @@ int runView(const Args& args);
 Scene loadSceneSpec(const std::string& spec);
 void applyEnvironmentOption(Scene& scene, const std::string& envPath);
 // --time T: an animated scene posed at T seconds (core/animation.h), its instances' previous
-// transforms at one headset frame before, for the G-buffer's motion vectors.
-void applyTimeOption(Scene& scene, const Options& options);
-// One DK2 frame (75 Hz): the step between the pose and the previous pose of --time.
-constexpr double kAnimationFrameSeconds = 1.0 / 75.0;
+// transforms one headset frame (kAnimationFrameSeconds) before, for the G-buffer's motion
+// vectors. Returns T, where the scene clock of a sequence starts.
+double applyTimeOption(Scene& scene, const Options& options);
 // The scene's own warnings (core/scene_info.h: no light, meshes not drawn, ...) on stderr,
 // for the commands that render it, once the environment option is applied.
 void warnAboutScene(const Scene& scene);

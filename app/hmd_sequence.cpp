@@ -90,6 +90,7 @@ std::string eyeImageName(const RenderRequest& r, int k, const char* what) {
 // The pose source's clock for frame k (see the timing model above).
 struct FrameTimes {
   double render, display;
+  double sinceStart;  // render time less frame 0's
 };
 
 }  // namespace
@@ -135,8 +136,7 @@ class FrameLog {
 // One sequence on one context: the frame pipeline, the compositor, the panel images.
 class HmdSequence {
  public:
-  HmdSequence(const RenderRequest& r, const HmdSequenceOptions& o,
-              const hmd::HeadsetDescription& headset)
+  HmdSequence(RenderRequest& r, const HmdSequenceOptions& o, const hmd::HeadsetDescription& headset)
       : r_(r),
         headset_(headset),
         eyes_(headset.layout(r.width, r.height, float(glm::radians(o.overscanDeg)))),
@@ -146,6 +146,7 @@ class HmdSequence {
         panelFiles_(r.outDir),
         log_(r.outDir) {
     pipeline_.prepare(frameSettingsOf(r));  // as before: set up before the first frame
+    if (isAnimated(r.scene)) pipeline_.animate(r.scene);  // plays on the sequence's clock
   }
 
   // Frame k rendered with 'trackedA' and shown at 'trackedB' (poses relative to the view).
@@ -155,7 +156,10 @@ class HmdSequence {
     const auto to = display::headEyes(display::composePose(r_.view.head, trackedB), eyes_,
                                       glm::vec2(0), headset_.ipd);
     const auto tr = Clock::now();
-    StereoFrame frame = pipeline_.render({from, 2, uint32_t(k), frameSettingsOf(r_)});
+    // The scene clock runs with the pose source's from --time: frame k shows the scene as
+    // it is when the frame starts rendering.
+    StereoFrame frame =
+        pipeline_.render({from, 2, uint32_t(k), frameSettingsOf(r_), r_.time + t.sinceStart});
     gl::waitForGpu();
     const double renderMs = msSince(tr);
     const auto tc = Clock::now();
@@ -232,7 +236,7 @@ class HmdSequence {
 
 }  // namespace
 
-int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, HmdSequenceOptions o) {
+int renderHmdSequence(RenderRequest& r, const HmdSpec& spec, HmdSequenceOptions o) {
   const hmd::HeadsetDescription headset = hmd::HeadsetDescription::dk2();
   if (o.panelWidth == 0)
     o.panelWidth = headset.lens.panel.hResolution, o.panelHeight = headset.lens.panel.vResolution;
@@ -247,9 +251,10 @@ int renderHmdSequence(const RenderRequest& r, const HmdSpec& spec, HmdSequenceOp
   HmdSequence sequence(r, o, headset);
   std::printf("hmd: %s; timing: frame k rendered at t = k / %.3g s, shown at t + %.1f ms\n",
               source->status().c_str(), o.fps, latency * 1e3);
+  const double start = spec.kind == "dk2" ? hmd::hostSeconds() : 0.0;
   for (int k = 0; k < r.frames; ++k) {
     const double t0 = spec.kind == "dk2" ? hmd::hostSeconds() : k / o.fps;
-    const FrameTimes t{t0, t0 + latency};
+    const FrameTimes t{t0, t0 + latency, t0 - start};
     sequence.frame(k, t, source->pose(t.render), source->pose(t.display));
   }
   sequence.finish(o);

@@ -20,7 +20,7 @@ struct HmdSequenceOptions {
 // accepted only with an --hmd other than none.
 HmdSequenceOptions extractHmdSequenceOptions(Args& args, const HmdSpec& hmd);
 
-int renderHmdSequence(const RenderRequest& request, const HmdSpec& hmd, HmdSequenceOptions options);
+int renderHmdSequence(RenderRequest& request, const HmdSpec& hmd, HmdSequenceOptions options);
 
 extern const char* const kHmdRenderHelp;
 

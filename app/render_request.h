@@ -31,6 +31,8 @@ struct RenderRequest {
   WorkSkips skips;                         // --no-skip turns skips off (trace/work_skips.h)
   double converge = 0.0;                   // --converge: stop at this estimated relMSE; 0 = off
   bool stereoReuse = kStereoReuseDefault;  // --stereo-reuse
+  double time = 0.0;                       // --time: the scene time of frame 0 (an animated scene)
+  bool play = false;  // --play: frame f at time + f * kAnimationFrameSeconds (motion blur)
   Scene scene;
   View view;
 };
@@ -49,8 +51,9 @@ inline const char* eyeFolder(const View& v, int eye) {
 FrameSettings frameSettingsOf(const RenderRequest& request);
 
 int renderGBufferMode(const RenderRequest& request);
-// --mode hybrid and --mode pt: frames through the frame pipeline, accumulated.
-int renderTracedMode(const RenderRequest& request);
+// --mode hybrid and --mode pt: frames through the frame pipeline, accumulated (--play:
+// posing the request's animated scene at each frame's time).
+int renderTracedMode(RenderRequest& request);
 
 extern const char* const kRenderHelp;
 

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <utility>
 
 #include "gl/render_context.h"
@@ -131,7 +132,12 @@ std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frame
                   "denoise (%s) %.1f ms (%llu shared-edge hits clamped)",
                   total.gbufferMs / n, total.readbackMs / n, total.rebuildMs / n, total.traceMs / n,
                   denoise, total.denoiseMs / n, (unsigned long long)total.outsideHits);
-  return stages + eyeTracerLine(r, total, n);
+  std::string line = stages + eyeTracerLine(r, total, n);
+  if (total.animateMs > 0.0) {
+    std::snprintf(stages, sizeof stages, "; posing the scene %.2f ms", total.animateMs / n);
+    line += stages;
+  }
+  return line;
 }
 
 }  // namespace
@@ -149,7 +155,7 @@ FrameSettings frameSettingsOf(const RenderRequest& r) {
   return s;
 }
 
-int renderTracedMode(const RenderRequest& r) {
+int renderTracedMode(RenderRequest& r) {
   const FrameSettings settings = frameSettingsOf(r);
   // pt without the denoiser needs no GL at all; the denoiser's guides are a G-buffer.
   std::unique_ptr<gl::Context> context;
@@ -162,6 +168,7 @@ int renderTracedMode(const RenderRequest& r) {
   const auto t0 = Clock::now();
   FramePipeline pipeline(r.scene, config, context.get());
   pipeline.prepare(settings);  // the denoiser's set-up is not a frame's
+  if (r.play && isAnimated(r.scene)) pipeline.animate(r.scene);
   const double buildMs = 1e3 * secondsSince(t0);
   if (settings.mode == FrameMode::Hybrid)
     std::printf("sampling: %s (%s)\n", sampleMapKindName(r.sampling),
@@ -173,7 +180,9 @@ int renderTracedMode(const RenderRequest& r) {
   const auto sums = accumulateFrames(
       r,
       [&](const std::array<EyeCamera, 2>& eyes, uint32_t f) {
-        StereoFrame frame = pipeline.render({eyes, eyeCount, f, settings});
+        const double sceneTime =
+            r.play ? r.time + f * kAnimationFrameSeconds : std::numeric_limits<double>::quiet_NaN();
+        StereoFrame frame = pipeline.render({eyes, eyeCount, f, settings, sceneTime});
         total.add(frame.times);
         return frame;
       },

@@ -42,14 +42,15 @@ void applyEnvironmentOption(Scene& scene, const std::string& envPath) {
   if (!warning.empty()) std::cerr << "photovr: warning: " << warning << "\n";
 }
 
-void applyTimeOption(Scene& scene, const Options& options) {
+double applyTimeOption(Scene& scene, const Options& options) {
   const double t = options.number("--time", 0.0f, 0.0f, 1e6f);
   if (!isAnimated(scene)) {
     if (options.has("--time"))
       std::cerr << "photovr: warning: --time: the scene has no animation; it is rendered as is\n";
-    return;
+    return t;
   }
   poseScene(scene, t, t - kAnimationFrameSeconds);
+  return t;
 }
 
 bool wantsHelp(const Args& args) {

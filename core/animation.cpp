@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/scene.h"
+#include "core/skinning.h"
 
 namespace photovr {
 namespace {
@@ -80,9 +81,11 @@ bool isAnimated(const Scene& scene) {
 
 namespace {
 
-// Every node's local TRS at time t: the rest pose with each animation's channels applied.
+// Every node's local TRS at time t: the rest pose with each animation's channels applied
+// (none when t is NaN: the rest pose itself).
 std::vector<SceneNode> localPoses(const Scene& scene, double t) {
   std::vector<SceneNode> nodes = scene.nodes;
+  if (std::isnan(t)) return nodes;
   for (const Animation& a : scene.animations) {
     const double duration = double(a.duration());
     const double local = duration > 0.0 ? t - duration * std::floor(t / duration) : 0.0;
@@ -123,27 +126,58 @@ glm::quat rotationOf(const glm::dmat4& world) {
   return glm::quat(glm::normalize(glm::quat_cast(r)));
 }
 
+// Skinned meshes follow their joints: their instances stay at identity (glTF 2.0 §3.7.3.3:
+// the skinned mesh node's own transform is ignored), the vertices move.
+void skinAll(Scene& scene, const std::vector<glm::dmat4>& world, SceneMotion& motion) {
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    Mesh& mesh = scene.meshes[m];
+    if (!mesh.skinned() || size_t(mesh.skinning.skin) >= scene.skins.size()) continue;
+    skinMesh(mesh, skinningMatrices(scene.skins[size_t(mesh.skinning.skin)], world));
+    motion.deformedMeshes.push_back(int(m));
+    motion.lightsMoved |= scene.materials[size_t(mesh.material)].isEmissive();
+  }
+}
+
 }  // namespace
 
-void poseScene(Scene& scene, double t, double previousT) {
+SceneMotion poseScene(Scene& scene, double t, double previousT) {
   const std::vector<glm::dmat4> now = worldPoses(scene, t);
   const std::vector<glm::dmat4> before = worldPoses(scene, previousT);
+  SceneMotion motion;
   for (size_t i = 0; i < scene.nodes.size(); ++i) {
     const SceneNode& n = scene.nodes[i];
     for (int k : n.instances) {
-      scene.instances[size_t(k)].transform = glm::mat4(now[i]);
-      scene.instances[size_t(k)].previousTransform = glm::mat4(before[i]);
+      Instance& inst = scene.instances[size_t(k)];
+      if (scene.hasMesh(inst.mesh) && scene.meshes[size_t(inst.mesh)].skinned()) {
+        // Its vertices are written in scene coordinates below; a re-base since the last
+        // pose (core/scene_transform.h) may have moved the instance.
+        inst.transform = inst.previousTransform = glm::mat4(1.0f);
+        continue;
+      }
+      inst.transform = glm::mat4(now[i]);
+      inst.previousTransform = glm::mat4(before[i]);
+      if (scene.hasMesh(inst.mesh))
+        motion.lightsMoved |=
+            scene.materials[size_t(scene.meshes[size_t(inst.mesh)].material)].isEmissive();
     }
     for (int k : n.lights) {
       Light& l = scene.lights[size_t(k)];
       l.position = glm::vec3(now[i][3]);
       l.direction = glm::vec3(glm::normalize(glm::dmat3(now[i]) * glm::dvec3(0, 0, -1)));
+      motion.lightsMoved = true;
     }
     for (int k : n.cameras) {
       scene.cameras[size_t(k)].position = glm::vec3(now[i][3]);
       scene.cameras[size_t(k)].orientation = rotationOf(now[i]);
     }
   }
+  skinAll(scene, now, motion);
+  return motion;
+}
+
+void skinRestPose(Scene& scene) {
+  SceneMotion ignored;
+  skinAll(scene, worldPoses(scene, std::nan("")), ignored);
 }
 
 }  // namespace photovr

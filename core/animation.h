@@ -31,6 +31,14 @@ struct SceneNode {
   std::vector<int> instances, lights, cameras;  // what the node carries (Scene indices)
 };
 
+// glTF 2.0 §3.7.3: a skeleton. Each joint's skinning matrix is its world transform times
+// its inverse bind matrix.
+struct Skin {
+  std::string name;
+  std::vector<int> joints;              // indices into Scene::nodes
+  std::vector<glm::dmat4> inverseBind;  // per joint; identity where the file gives none
+};
+
 enum class AnimationPath { Translation, Rotation, Scale };
 enum class Interpolation { Step, Linear, CubicSpline };
 
@@ -53,11 +61,25 @@ struct Animation {
 // last keys outside their range; rotations slerped (linear) or normalised (cubic).
 glm::dvec4 sampleChannel(const AnimationChannel& channel, double t);
 
+// The scene clock's step when nothing else sets it: one frame of the DK2's 75 Hz panel.
+constexpr double kAnimationFrameSeconds = 1.0 / 75.0;
+
 // Whether the scene moves: it has an animation with at least one channel.
 bool isAnimated(const Scene& scene);
 
+// What a pose changed, for the renderers to update no more than that.
+struct SceneMotion {
+  bool lightsMoved = false;         // a punctual light or an emissive instance was posed
+  std::vector<int> deformedMeshes;  // skinned meshes whose vertices were rewritten
+};
+
 // Poses the scene at time t (every animation playing at once, each looping over its own
-// duration), with the pose at 'previousT' as every instance's previous transform.
-void poseScene(Scene& scene, double t, double previousT);
+// duration), with the pose at 'previousT' as every instance's previous transform; skinned
+// meshes are deformed to the pose at t (core/skinning.h).
+SceneMotion poseScene(Scene& scene, double t, double previousT);
+
+// Deforms every skinned mesh to the node hierarchy's rest pose (no animation applied): the
+// loader's last step, since a skinned mesh's bind pose is not its rest pose.
+void skinRestPose(Scene& scene);
 
 }  // namespace photovr

@@ -394,6 +394,10 @@ struct Loader {
   DoublePlacement placed;        // the scene's parts as placed in double, for storePlacement
   std::vector<int> sceneNodeOf;  // glTF node -> Scene::nodes, -1 when not in the scene
   int defaultMaterial = -1;
+  struct SkinnedInstance {
+    int instance, skin;  // Scene instance, glTF skin
+  };
+  std::vector<SkinnedInstance> skinnedInstances;  // bound by bindSkins once nodes are placed
 };
 
 template <typename T>
@@ -936,6 +940,34 @@ void checkCount(const Loader& ld, size_t count, size_t vertices, const std::stri
             " vertices");
 }
 
+// glTF 2.0 §3.7.3.3: JOINTS_0 are unsigned byte or short indices into the skin's joints;
+// WEIGHTS_0 float or normalised unsigned, non-negative. They are normalised to sum 1 here
+// (exporters round them); a vertex with no weight at all cannot be skinned.
+void readSkinAttributes(const Loader& ld, int joints, int weights, Mesh& mesh,
+                        const std::string& where) {
+  if (joints < 0 || weights < 0) ld.fail(where + ": JOINTS_0 and WEIGHTS_0 come together");
+  const AccessorView jv = viewAccessor(ld, joints, where + " JOINTS_0");
+  if (jv.normalized || (jv.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                        jv.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+    ld.fail(where + " JOINTS_0: must be unsigned byte or short, not normalized");
+  const size_t n = mesh.positions.size();
+  MeshSkinning& s = mesh.skinning;
+  for (const glm::vec4& j : readVectors<4>(ld, joints, where + " JOINTS_0"))
+    s.joints.emplace_back(j);
+  s.weights = readVectors<4>(ld, weights, where + " WEIGHTS_0");
+  checkCount(ld, s.joints.size(), n, where + " JOINTS_0");
+  checkCount(ld, s.weights.size(), n, where + " WEIGHTS_0");
+  for (size_t v = 0; v < n; ++v) {
+    glm::vec4& w = s.weights[v];
+    const float sum = w.x + w.y + w.z + w.w;
+    if (!(w.x >= 0.0f && w.y >= 0.0f && w.z >= 0.0f && w.w >= 0.0f) || !(sum > 0.0f) ||
+        !std::isfinite(sum))
+      ld.fail(where + " WEIGHTS_0: vertex " + std::to_string(v) +
+              " has negative, non-finite or no weights");
+    w /= sum;
+  }
+}
+
 void readAttributes(const Loader& ld, const tg::Primitive& prim, Mesh& mesh,
                     const std::string& where) {
   const auto find = [&](const char* name) {
@@ -953,6 +985,8 @@ void readAttributes(const Loader& ld, const tg::Primitive& prim, Mesh& mesh,
   if (!mesh.tangents.empty()) checkCount(ld, mesh.tangents.size(), n, where + " TANGENT");
   if (!mesh.uv0.empty()) checkCount(ld, mesh.uv0.size(), n, where + " TEXCOORD_0");
   if (!mesh.uv1.empty()) checkCount(ld, mesh.uv1.size(), n, where + " TEXCOORD_1");
+  if (find("JOINTS_0") >= 0 || find("WEIGHTS_0") >= 0)
+    readSkinAttributes(ld, find("JOINTS_0"), find("WEIGHTS_0"), mesh, where);
 }
 
 // Returns false if any normal has zero length (it cannot be normalised). Scaled by its
@@ -1207,7 +1241,10 @@ void addMeshInstances(Loader& ld, const tg::Node& node, const glm::dmat4& world,
   if (node.mesh < 0) return;
   if (!inRange(node.mesh, ld.model.meshes))
     ld.fail(where + ": mesh index " + std::to_string(node.mesh) + " out of range");
+  if (node.skin >= 0 && !inRange(node.skin, ld.model.skins))
+    ld.fail(where + ": skin index " + std::to_string(node.skin) + " out of range");
   for (int mesh : sceneMeshes(ld, node.mesh)) {
+    if (node.skin >= 0) ld.skinnedInstances.push_back({int(ld.scene.instances.size()), node.skin});
     Instance instance;
     instance.mesh = mesh;
     instance.transform = instance.previousTransform = glm::mat4(world);  // storePlacement
@@ -1316,14 +1353,91 @@ void warnNotPlayed(Loader& ld, size_t weightChannels) {
   if (weightChannels > 0)
     ld.warn(std::to_string(weightChannels) +
             " animation channel(s) of morph target weights not played");
-  if (!m.skins.empty())
-    ld.warn(std::to_string(m.skins.size()) + " skin(s) not applied (meshes in their bind pose)");
   size_t morphed = 0;
   for (const tg::Mesh& mesh : m.meshes)
     for (const tg::Primitive& prim : mesh.primitives) morphed += !prim.targets.empty();
   if (morphed > 0)
     ld.warn(std::to_string(morphed) +
             " primitive(s) with morph targets: targets not applied (base geometry)");
+}
+
+// ---------------------------------------------------------------------------------------
+// Skins (glTF 2.0 §3.7.3; deformed by core/skinning.h)
+
+glm::dmat4 inverseBindAt(const Loader& ld, const AccessorView& v, size_t joint,
+                         const std::string& where) {
+  glm::dmat4 m;
+  for (int c = 0; c < 16; ++c) m[c / 4][c % 4] = componentAt(v, joint, c);  // column-major
+  if (!isFinite(m)) ld.fail(where + ": non-finite inverse bind matrix " + std::to_string(joint));
+  return m;
+}
+
+Skin readSkin(const Loader& ld, int index) {
+  const tg::Skin& gs = ld.model.skins[size_t(index)];
+  Skin skin;
+  skin.name = gs.name.empty() ? "skin#" + std::to_string(index) : gs.name;
+  const std::string where = "skin " + named(skin.name);
+  if (gs.joints.empty()) ld.fail(where + ": has no joints");
+  for (int j : gs.joints) {
+    if (!inRange(j, ld.model.nodes) || ld.sceneNodeOf[size_t(j)] < 0)
+      ld.fail(where + ": joint node " + std::to_string(j) + " is not in the scene");
+    skin.joints.push_back(ld.sceneNodeOf[size_t(j)]);
+  }
+  skin.inverseBind.assign(skin.joints.size(), glm::dmat4(1.0));
+  if (gs.inverseBindMatrices < 0) return skin;  // §3.7.3.1: identity matrices
+  const std::string what = where + " inverseBindMatrices";
+  const AccessorView v = viewAccessor(ld, gs.inverseBindMatrices, what);
+  if (v.components != 16 || v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    ld.fail(what + ": must be float MAT4");
+  if (v.count < skin.joints.size())
+    ld.fail(what + ": " + std::to_string(v.count) + " matrices for " +
+            std::to_string(skin.joints.size()) + " joints");
+  for (size_t j = 0; j < skin.joints.size(); ++j)
+    skin.inverseBind[j] = inverseBindAt(ld, v, j, what);
+  return skin;
+}
+
+// The mesh's bind pose, kept for skinMesh; every weighted joint index names a joint.
+void bindMesh(const Loader& ld, Mesh& mesh, int skin, size_t jointCount) {
+  MeshSkinning& sk = mesh.skinning;
+  for (size_t v = 0; v < sk.joints.size(); ++v)
+    for (int k = 0; k < 4; ++k)
+      if (sk.weights[v][k] > 0.0f && sk.joints[v][k] >= jointCount)
+        ld.fail("mesh " + named(mesh.name) + " JOINTS_0: vertex " + std::to_string(v) +
+                " names joint " + std::to_string(sk.joints[v][k]) + " of a skin with " +
+                std::to_string(jointCount));
+  sk.skin = skin;
+  sk.positions = mesh.positions;
+  sk.normals = mesh.normals;
+  sk.tangents = mesh.tangents;
+}
+
+// Each skinned instance gets a mesh of its own (its vertices move with its skeleton) and an
+// identity transform (§3.7.3.3: the skinned node's own transform is ignored; the joints
+// carry the mesh, already re-based at Scene::origin).
+void bindSkins(Loader& ld) {
+  Scene& s = ld.scene;
+  std::vector<int> skinOf(ld.model.skins.size(), -1);
+  std::vector<int> users(s.meshes.size(), 0);
+  for (const Instance& i : s.instances) ++users[size_t(i.mesh)];
+  for (const Loader::SkinnedInstance& si : ld.skinnedInstances) {
+    Instance& inst = s.instances[size_t(si.instance)];
+    if (s.meshes[size_t(inst.mesh)].skinning.joints.empty()) {
+      ld.warn("node " + named(inst.node) + ": skinned, but mesh " +
+              named(s.meshes[size_t(inst.mesh)].name) + " has no JOINTS_0 (drawn rigid)");
+      continue;
+    }
+    int& skin = skinOf[size_t(si.skin)];
+    if (skin < 0) skin = int(s.skins.size()), s.skins.push_back(readSkin(ld, si.skin));
+    if (users[size_t(inst.mesh)] > 1) {
+      --users[size_t(inst.mesh)];
+      Mesh own = s.meshes[size_t(inst.mesh)];
+      inst.mesh = int(s.meshes.size());
+      s.meshes.push_back(std::move(own));
+    }
+    bindMesh(ld, s.meshes[size_t(inst.mesh)], skin, s.skins[size_t(skin)].joints.size());
+    inst.transform = inst.previousTransform = glm::mat4(1.0f);
+  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1427,6 +1541,8 @@ Scene loadGltf(const std::string& path) {
   // every later stage would see infinities.
   if (!storePlacement(ld.scene, ld.placed))
     ld.fail("the node transforms take the geometry beyond float range (non-finite bounds)");
+  bindSkins(ld);
+  skinRestPose(ld.scene);
   const Bounds world = ld.scene.worldBounds();
   const auto finite = [](const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -100,6 +100,8 @@ void makeFlatShaded(Mesh& mesh) {
   unshare(mesh.uv0, mesh.indices);
   unshare(mesh.uv1, mesh.indices);
   unshare(mesh.tangents, mesh.indices);
+  unshare(mesh.skinning.joints, mesh.indices);
+  unshare(mesh.skinning.weights, mesh.indices);
   for (size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = uint32_t(i);
   mesh.normals.assign(mesh.positions.size(), glm::vec3(0, 1, 0));
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include "core/animation.h"
 
@@ -112,8 +113,19 @@ struct Material {
   glm::vec3 absorption() const;
 };
 
+// Linear-blend skinning data of a mesh a skinned node carries (glTF 2.0 §3.7.3): the bind
+// pose and up to four joints per vertex (JOINTS_0 / WEIGHTS_0). core/skinning.h writes the
+// mesh's positions, normals and tangents from them at each pose.
+struct MeshSkinning {
+  int skin = -1;  // index into Scene::skins; -1: a rigid mesh
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec4> tangents;
+  std::vector<glm::u16vec4> joints;  // indices into the skin's joints
+  std::vector<glm::vec4> weights;    // non-negative, summing to 1
+};
+
 // One glTF primitive: a triangle list with one material. Stored once, referenced by
-// any number of instances.
+// any number of instances (a skinned one by its own instance only).
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
@@ -123,14 +135,16 @@ struct Mesh {
   std::vector<glm::vec2> uv1;       // may be empty
   std::vector<uint32_t> indices;    // 3 per triangle, always present (generated if absent)
   int material = 0;                 // index into Scene::materials
+  MeshSkinning skinning;            // read for every primitive with JOINTS_0, used when skinned
 
   size_t triangleCount() const { return indices.size() / 3; }
+  bool skinned() const { return skinning.skin >= 0; }
   size_t vertexCount() const { return positions.size(); }
 };
 
 struct Instance {
   int mesh = 0;                       // index into Scene::meshes
-  glm::mat4 transform{1.0f};          // object to world
+  glm::mat4 transform{1.0f};          // object to world (a skinned mesh: identity)
   glm::mat4 previousTransform{1.0f};  // last frame's, for motion vectors
   std::string node;                   // glTF node name, for messages
 };
@@ -210,6 +224,7 @@ struct Scene {
   // instances, lights and cameras the animated nodes carry. Empty for built-in scenes.
   std::vector<SceneNode> nodes;
   std::vector<Animation> animations;
+  std::vector<Skin> skins;  // what skinned meshes (Mesh::skinning) are deformed by
   // Where this scene's coordinate zero lies in the coordinates of the file it came from
   // (metres, double): a far-away file is re-based near its content so that floats keep
   // their precision (core/scene_transform.h); translateScene keeps it up to date.

@@ -161,7 +161,15 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
       << " triangles instanced; " << count(shared) << " meshes instanced more than once)\n";
   for (const Animation& a : scene.animations)
     out << "animation: '" << a.name << "', " << fmt("%.2f s", a.duration()) << ", "
-        << a.channels.size() << " node channel(s) (render --time T poses it)\n";
+        << a.channels.size()
+        << " node channel(s) (render --time T poses it; --play, --hmd and view play it)\n";
+  for (const Skin& skin : scene.skins) {
+    size_t meshes = 0, vertices = 0;
+    for (const Mesh& m : scene.meshes)
+      if (m.skinning.skin == int(&skin - scene.skins.data())) ++meshes, vertices += m.vertexCount();
+    out << "skin: '" << skin.name << "', " << skin.joints.size() << " joints, " << meshes
+        << " mesh(es), " << count(vertices) << " vertices skinned on the CPU\n";
+  }
 }
 
 void describeMaterials(std::ostream& out, const Scene& scene) {
@@ -264,7 +272,8 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
   out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
   out << "  any-hit filter: " << count(f.filteredMeshes) << " of " << count(scene.meshes.size())
       << " meshes (MASK, BLEND or single-sided; the rest have none)\n";
-  out << (isAnimated(scene) ? "  BVH refit: never (a render poses the scene once, at --time)\n"
+  out << (isAnimated(scene) ? "  BVH refit: once per frame while the animation plays (the top "
+                              "level; skinned meshes' BVHs too); never for a still at --time\n"
                             : "  BVH refit: never (static scene)\n");
   out << "  sky pixels: "
       << (f.environment ? "environment looked up, not traced (hybrid)"

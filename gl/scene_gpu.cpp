@@ -114,6 +114,21 @@ void SceneGpu::updateInstances(const Scene& scene) {
                             data.data());
 }
 
+template <typename T>
+void replaceData(GLuint buffer, const std::vector<T>& data) {
+  if (!data.empty())
+    api::NamedBufferSubData(buffer, 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
+}
+
+void SceneGpu::updateMeshVertices(const Scene& scene, const std::vector<int>& meshes) {
+  for (int m : meshes) {
+    const Mesh& mesh = scene.meshes[size_t(m)];
+    replaceData(meshes_[size_t(m)].buffers[0], mesh.positions);
+    replaceData(meshes_[size_t(m)].buffers[1], mesh.normals);
+    replaceData(meshes_[size_t(m)].buffers[2], mesh.tangents);
+  }
+}
+
 unsigned SceneGpu::textureFor(const Scene& scene, const TextureRef& ref, bool srgb) {
   if (!ref.valid() || ref.texture >= int(scene.textures.size())) return 0;
   auto [it, inserted] = textures_.try_emplace({ref.texture, srgb}, 0u);

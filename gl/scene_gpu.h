@@ -31,6 +31,8 @@ class SceneGpu {
 
   // Re-uploads instance transforms (and their previous-frame transforms).
   void updateInstances(const Scene& scene);
+  // Re-uploads these meshes' positions, normals and tangents (skinned meshes, posed).
+  void updateMeshVertices(const Scene& scene, const std::vector<int>& meshes);
 
   const std::vector<GpuMesh>& meshes() const { return meshes_; }
   unsigned instanceBuffer() const { return instanceBuffer_; }

@@ -1,5 +1,6 @@
 #include "hybrid/frame_pipeline.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -81,7 +82,28 @@ void FramePipeline::requireGl(const char* what) const {
     throw std::logic_error(std::string("FramePipeline: ") + what + " needs a GL context");
 }
 
+void FramePipeline::animate(Scene& scene) {
+  if (&scene != &traceContext().scene)
+    throw std::logic_error("FramePipeline::animate: not the scene the pipeline was built on");
+  animated_ = &scene;
+}
+
+void FramePipeline::pose(StereoFrame& frame) {
+  const double t = frame.request.sceneTime;
+  if (!animated_ || std::isnan(t) || t == posedTime_) return;
+  const auto t0 = Clock::now();
+  const double previous = std::isnan(posedTime_) ? t - kAnimationFrameSeconds : posedTime_;
+  const SceneMotion motion = poseScene(*animated_, t, previous);
+  if (hybrid_)
+    hybrid_->sceneMoved(motion);
+  else
+    moveTracerScene(*embree_, *lights_, motion);
+  posedTime_ = t;
+  frame.times.animateMs = msSince(t0);
+}
+
 void FramePipeline::begin(Job& job) {
+  pose(job.frame);
   const FrameRequest& r = job.frame.request;
   if (!needsGBuffer(r.settings)) return;
   requireGl(r.settings.mode == FrameMode::Hybrid ? "a hybrid frame" : "the denoiser");
@@ -200,6 +222,8 @@ void FramePipeline::renderSequence(const RequestFn& requests, int frames, Schedu
       throw std::logic_error(
           "FramePipeline: pipelined frames cannot be denoised (the guides "
           "would be the next frame's)");
+    if (animated_)
+      throw std::logic_error("FramePipeline: pipelined scheduling cannot pose an animated scene");
     if (first.settings.mode != FrameMode::Hybrid ||
         first.settings.sampleMap != SampleMapKind::Uniform)
       throw std::logic_error("FramePipeline: pipelined scheduling is for uniform hybrid frames");

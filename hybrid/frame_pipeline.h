@@ -19,6 +19,7 @@
 #include <condition_variable>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -56,6 +57,9 @@ struct FrameRequest {
   int eyeCount = 2;
   uint32_t index = 0;  // the frame number: jitter, random numbers, denoiser history
   FrameSettings settings;
+  // The scene time the frame shows, in seconds, for a pipeline that animates its scene
+  // (FramePipeline::animate); NaN: the scene as it stands.
+  double sceneTime = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct StereoFrame {
@@ -79,6 +83,13 @@ class FramePipeline {
   // programs; the sample maps), so that the first frame's times are the frame's alone.
   // Frames make it themselves otherwise.
   void prepare(const FrameSettings& settings);
+
+  // Frames with a sceneTime pose 'scene' (the one this pipeline was built on; animated,
+  // core/animation.h) at it before they are drawn or traced, with the last frame's pose as
+  // the motion vectors' previous one (the first: kAnimationFrameSeconds before). Posing
+  // happens on the GL thread while no frame is traced (begin()); pipelined scheduling, which
+  // draws frame N + 1 while tracing N, refuses an animated scene (std::logic_error).
+  void animate(Scene& scene);
 
   // Sequential: begin, trace and finish one frame.
   StereoFrame render(const FrameRequest& request);
@@ -117,6 +128,7 @@ class FramePipeline {
     std::array<gl::GBufferImage, 2> gbuffers;
     const StereoSampleMaps* maps = nullptr;  // into maps_, chosen on the GL thread
   };
+  void pose(StereoFrame& frame);
   void begin(Job& job);
   void trace(Job& job);
   void finish(StereoFrame& frame);
@@ -137,6 +149,8 @@ class FramePipeline {
   std::array<gl::GBufferImage, 2> gbuffers_;  // sequential read-backs, storage reused
   bool historyValid_ = false;
   FrameMode historyMode_ = FrameMode::Hybrid;
+  Scene* animated_ = nullptr;  // set by animate()
+  double posedTime_ = std::numeric_limits<double>::quiet_NaN();
 
   // Background worker state, guarded by mutex_.
   mutable std::mutex mutex_;

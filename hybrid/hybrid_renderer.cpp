@@ -15,6 +15,7 @@ void FrameTimes::add(const FrameTimes& t) {
     eyePaths[e] += t.eyePaths[e];
     eyeReusedPaths[e] += t.eyeReusedPaths[e];
   }
+  animateMs += t.animateMs;
   denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
   rays += t.rays, outsideHits += t.outsideHits, rejectedSamples += t.rejectedSamples;
 }
@@ -33,6 +34,18 @@ HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSett
       embree_(scene, settings.skips),
       lights_(scene, settings.skips),
       ctx_{scene, embree_, lights_, settings} {}
+
+void moveTracerScene(EmbreeScene& embree, LightSet& lights, const SceneMotion& motion) {
+  embree.updateMeshVertices(motion.deformedMeshes);
+  embree.updateInstanceTransforms();
+  if (motion.lightsMoved) lights.update();
+}
+
+void HybridRenderer::sceneMoved(const SceneMotion& motion) {
+  gpu_.updateInstances(scene_);
+  gpu_.updateMeshVertices(scene_, motion.deformedMeshes);
+  moveTracerScene(embree_, lights_, motion);
+}
 
 void HybridRenderer::drawGBuffer(const std::array<EyeCamera, 2>& eyes) {
   std::array<glm::mat4, 2> vp;

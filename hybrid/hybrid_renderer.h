@@ -30,14 +30,19 @@ struct FrameTimes {
   std::array<uint64_t, 2> eyePaths{};        // per eye: paths from primary hits ...
   std::array<uint64_t, 2> eyeReusedPaths{};  // ... of which reused the left eye's
   double refitMs = 0.0;                      // BVH top-level re-commit (only with 'refit' off)
-  double denoiseMs = 0.0;                    // FramePipeline's finish: denoiser or upload, wall
-  double denoisePassMs = 0.0;                // the denoiser's passes, glFinish-bracketed (timed)
+  double animateMs = 0.0;      // posing an animated scene and updating GL, Embree and lights to it
+  double denoiseMs = 0.0;      // FramePipeline's finish: denoiser or upload, wall
+  double denoisePassMs = 0.0;  // the denoiser's passes, glFinish-bracketed (timed)
   uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
   double cpuMs() const { return refitMs + rebuildMs + traceMs; }  // the tracer's share
-  double totalMs() const { return gbufferMs + readbackMs + cpuMs(); }
+  double totalMs() const { return animateMs + gbufferMs + readbackMs + cpuMs(); }
   void add(const FrameTimes& t);                // sums every field
   void addEye(int eye, const EyeImage& image);  // its rays, rejected samples and path counts
 };
+
+// The tracer's side of a posed scene: skinned meshes' BVHs refit, the top level re-committed,
+// and the light set rebuilt where lights or emitters moved.
+void moveTracerScene(EmbreeScene& embree, LightSet& lights, const SceneMotion& motion);
 
 class HybridRenderer {
  public:
@@ -72,6 +77,11 @@ class HybridRenderer {
   // into their storage instead of fresh memory (hybrid_tracer.h, HybridEyeBuffers).
   // renderSequence does it after each onFrame.
   void recycle(std::array<EyeImage, 2>&& images);
+
+  // The scene was posed (core/animation.h poseScene returned 'motion'): the G-buffer's
+  // instance data and skinned vertices, and the tracer's scene (moveTracerScene), follow it.
+  // Not while a frame is being traced.
+  void sceneMoved(const SceneMotion& motion);
 
   const gl::GBufferPass& gbuffer() const { return pass_; }
   const EmbreeScene& embree() const { return embree_; }

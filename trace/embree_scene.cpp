@@ -130,6 +130,10 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
   rtcSetSceneBuildQuality(s, mesh.triangleCount() <= kMediumQualityLimit ? RTC_BUILD_QUALITY_MEDIUM
                                                                          : RTC_BUILD_QUALITY_LOW);
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (mesh.skinned()) {  // its vertices move every pose: the BVH is refit, not rebuilt
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
+  }
   auto* v = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
       g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertexCount()));
   std::copy(mesh.positions.begin(), mesh.positions.end(), v);
@@ -342,6 +346,19 @@ void EmbreeScene::updateInstanceTransforms() {
     rtcCommitGeometry(g);
   }
   rtcCommitScene(impl_->top);
+}
+
+void EmbreeScene::updateMeshVertices(const std::vector<int>& meshes) {
+  for (int m : meshes) {
+    const Mesh& mesh = impl_->scene.meshes[size_t(m)];
+    RTCScene s = impl_->meshScenes[size_t(m)];
+    RTCGeometry g = rtcGetGeometry(s, 0);
+    auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+    std::copy(mesh.positions.begin(), mesh.positions.end(), v);
+    rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(g);
+    rtcCommitScene(s);
+  }
 }
 
 ReplayCounts EmbreeScene::replayParallel(const std::vector<RecordedRay>& rays) const {

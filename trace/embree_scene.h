@@ -133,6 +133,10 @@ class EmbreeScene {
   // LOW-quality dynamic BVH Embree refits/rebuilds in ~0.05 ms per 100 instances
   // (platform.md), instead of rebuilding any mesh BVH.
   void updateInstanceTransforms();
+  // These skinned meshes' vertices moved (core/skinning.h): their BVHs are refit (built
+  // with RTC_BUILD_QUALITY_REFIT); call updateInstanceTransforms() after, so the top level
+  // sees their new bounds.
+  void updateMeshVertices(const std::vector<int>& meshes);
 
   // While set, intersect() and occluded() append each ray to 'recorder' (null: off; the
   // cost when off is one predictable branch per ray). Not to be changed during a render.

@@ -90,14 +90,33 @@ float meanEmission(const Scene& scene, uint32_t instance, uint32_t t, const glm:
 
 }  // namespace
 
-LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
+LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene), skips_(skips) {
+  if (scene.environment.type != Environment::Type::None)
+    environment_ = EnvironmentSampler(scene.environment);
+  update();
+}
+
+// Everything but the environment's own sampler depends on where things are: the emitters'
+// world triangles, and the selection weights (the scene's radius enters the punctual and
+// environment powers).
+void LightSet::update() {
+  punctual_.clear(), triangles_.clear(), triangleSlots_.clear(), standIns_.clear();
+  environmentIndex_ = -1;
   std::vector<float> weights;
-  const float radius = sceneRadius(scene);
-  for (const Light& l : scene.lights)
+  const float radius = sceneRadius(scene_);
+  for (const Light& l : scene_.lights)
     if (l.intensity > 0.0f && luminance(l.color) > 0.0f) {
       punctual_.push_back(&l);
       weights.push_back(punctualPower(l, radius));
     }
+  addAreaTriangles(weights);
+  addEnvironment(radius, weights);
+  addStandIns(skips_, weights);
+  selection_ = weights.empty() ? Distribution1D() : Distribution1D(weights);
+}
+
+void LightSet::addAreaTriangles(std::vector<float>& weights) {
+  const Scene& scene = scene_;
   instanceSlots_.assign(scene.instances.size(), kNoLight);
   // Coincident emitters (a triangle listed twice) are one light: a BSDF ray sees only one
   // of them, so sampling both would count the emission twice (stress suite, "duplicate").
@@ -118,7 +137,7 @@ LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
       if (!(area > 0.0f)) continue;
       const glm::vec3 normal = unitGeometricNormal(e1, e2);
       const float emitted =
-          skips.darkEmitters ? meanEmission(scene, i, t, normal) : luminance(mat.emission());
+          skips_.darkEmitters ? meanEmission(scene, i, t, normal) : luminance(mat.emission());
       if (!(emitted > 0.0f)) continue;  // black under its texture: see meanEmission
       const auto [it, fresh] =
           seen.try_emplace(vertexKey(p0, p0 + e1, p0 + e2), uint32_t(triangles_.size()));
@@ -128,23 +147,19 @@ LightSet::LightSet(const Scene& scene, const WorkSkips& skips) : scene_(scene) {
       weights.push_back(emitted * area * kPi * (mat.doubleSided ? 2.0f : 1.0f));
     }
   }
-  if (scene.environment.type != Environment::Type::None) {
-    environment_ = EnvironmentSampler(scene.environment);
-    if (!environment_.empty()) {
-      // Flux the environment sends through the scene's bounding disc: pi L_avg * pi R^2,
-      // with L_avg from a fixed 8 x 8 stratified set of directions (deterministic).
-      const float r = radius;
-      float avg = 0.0f;
-      for (int k = 0; k < 64; ++k) {
-        const glm::vec3 d = sampleUniformSphere({(k % 8 + 0.5f) / 8.0f, (k / 8 + 0.5f) / 8.0f});
-        avg += luminance(lookupEnvironment(scene.environment, d)) / 64.0f;
-      }
-      environmentIndex_ = int(weights.size());
-      weights.push_back(std::max(avg, 1e-6f) * kPi * kPi * r * r);
-    }
+}
+
+// Flux the environment sends through the scene's bounding disc: pi L_avg * pi R^2, with
+// L_avg from a fixed 8 x 8 stratified set of directions (deterministic).
+void LightSet::addEnvironment(float radius, std::vector<float>& weights) {
+  if (environment_.empty()) return;
+  float avg = 0.0f;
+  for (int k = 0; k < 64; ++k) {
+    const glm::vec3 d = sampleUniformSphere({(k % 8 + 0.5f) / 8.0f, (k / 8 + 0.5f) / 8.0f});
+    avg += luminance(lookupEnvironment(scene_.environment, d)) / 64.0f;
   }
-  addStandIns(skips, weights);
-  if (!weights.empty()) selection_ = Distribution1D(weights);
+  environmentIndex_ = int(weights.size());
+  weights.push_back(std::max(avg, 1e-6f) * kPi * kPi * radius * radius);
 }
 
 void LightSet::addStandIns(const WorkSkips& skips, std::vector<float>& weights) {

@@ -30,6 +30,9 @@ class LightSet {
   // Keeps references to 'scene' (and its environment). With a light-class skip turned off
   // (work_skips.h), a class the scene lacks is represented by a dark stand-in.
   explicit LightSet(const Scene& scene, const WorkSkips& skips = {});
+  // The scene moved (core/animation.h poseScene): the emitters' world triangles and the
+  // selection weights are rebuilt from it; the environment's sampler stays.
+  void update();
 
   bool empty() const { return selection_.size() == 0; }
   bool hasEnvironment() const { return !environment_.empty(); }
@@ -63,9 +66,12 @@ class LightSet {
   // A light class the scene lacks, sampled like a real light of that class but dark.
   enum class StandIn { Punctual, Area, Environment };
   LightSample sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u) const;
+  void addAreaTriangles(std::vector<float>& weights);
+  void addEnvironment(float radius, std::vector<float>& weights);
   void addStandIns(const WorkSkips& skips, std::vector<float>& weights);
 
   const Scene& scene_;
+  WorkSkips skips_;
   std::vector<const Light*> punctual_;
   std::vector<AreaTriangle> triangles_;
   std::vector<uint32_t> instanceSlots_;  // per instance: first entry in triangleSlots_, or kNoLight

@@ -12,6 +12,7 @@
 #include "core/memory.h"
 #include "core/image_io.h"
 #include "tests/app/cli_util.h"
+#include "tests/core/skinned_glb.h"
 
 namespace photovr {
 namespace {
@@ -149,6 +150,28 @@ TEST(Cli, RenderWarnsWhenNothingLightsTheScene) {
   const auto lit = runPhotovr("render --scene cornell" + args);
   ASSERT_EQ(lit.status, 0) << lit.output;
   EXPECT_EQ(lit.output.find("warning"), std::string::npos) << lit.output;
+}
+
+// render --play: frame f of an animated scene at --time + f / 75 s, posed by the pipeline
+// (its time in the stage line); refused where there is nothing to accumulate.
+TEST(Cli, RenderPlayPosesEachFrame) {
+  const std::string dir = tempDir("play");
+  testing::SkinOptions bar;
+  bar.emissive = true;
+  const std::string scene = testing::skinnedFile(dir, bar);
+  const std::string args = " --scene " + scene + " --mode pt --eyes mono --width 8 --height 8" +
+                           " --frames 3 --out " + dir + "/out";
+  const auto played = runPhotovr("render --play" + args);
+  ASSERT_EQ(played.status, 0) << played.output;
+  EXPECT_NE(played.output.find("posing the scene"), std::string::npos) << played.output;
+  const auto still = runPhotovr("render" + args);
+  ASSERT_EQ(still.status, 0) << still.output;
+  EXPECT_EQ(still.output.find("posing the scene"), std::string::npos) << still.output;
+  const auto gbuffer =
+      runPhotovr("render --play --mode gbuffer --scene " + scene + " --out " + dir);
+  EXPECT_EQ(gbuffer.status, 2) << gbuffer.output;
+  EXPECT_NE(gbuffer.output.find("--play: needs a traced mode"), std::string::npos)
+      << gbuffer.output;
 }
 
 TEST(Cli, RenderWritesEveryImageForBothEyes) {

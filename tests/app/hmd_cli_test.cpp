@@ -14,6 +14,7 @@
 #include "hmd/recording.h"
 #include "hmd/synthetic.h"
 #include "tests/app/cli_util.h"
+#include "tests/core/skinned_glb.h"
 
 namespace photovr {
 namespace {
@@ -36,6 +37,35 @@ std::vector<std::vector<double>> readCsv(const std::string& path) {
     rows.push_back(row);
   }
   return rows;
+}
+
+// The mean x (pixels) of an eye image's lit pixels.
+double litCentroidX(const std::string& png) {
+  Image8 img = readImageRGBA8(png);
+  double sum = 0.0, n = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.at(x, y)[0] > 64) sum += x, n += 1.0;
+  return n > 0.0 ? sum / n : -1.0;
+}
+
+// Issue 23: the scene clock runs with the sequence's. The glowing skinned bar folds its tip
+// back over 1 s (tests/core/skinned_glb.h): at 2 frames a second, frame 2 (t = 1 s) shows it
+// half as long as frame 0, its lit pixels' centroid well left of frame 0's (the head stays
+// still; jitter moves it by under a pixel).
+TEST(HmdCli, SimSequencePlaysTheSceneOnItsClock) {
+  const std::string dir = tempDir("hmd-animated");
+  testing::SkinOptions bar;
+  bar.emissive = true;
+  const std::string scene = testing::skinnedFile(dir, bar);
+  std::ofstream(dir + "/still.csv") << "t,x,y,z,yaw,pitch,roll\n0,0,0,0,0,0,0\n";
+  const auto r = runPhotovr("render --hmd sim " + dir + "/still.csv --frames 3 --fps 2 --scene " +
+                            scene + " --width 48 --height 54 --panel 64x36 --out " + dir + "/out");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const double at0 = litCentroidX(dir + "/out/0000_left.png");
+  const double at1 = litCentroidX(dir + "/out/0002_left.png");
+  ASSERT_GT(at0, 0.0) << "nothing lit";
+  EXPECT_LT(at1, at0 - 2.0) << at0 << " -> " << at1;
 }
 
 TEST(HmdCli, SimSequenceWritesEyesPanelAndTimes) {

@@ -81,6 +81,19 @@ TEST(EmbreeScene, MovedInstancesAreFoundAfterUpdate) {
   EXPECT_TRUE(e.intersect({10, 0, 0}, {0, 0, -1}, 0, kInf).hit);
 }
 
+// A skinned mesh's BVH is built for refits; after its vertices move, the refit one finds
+// them where they are now.
+TEST(EmbreeScene, SkinnedVerticesAreFoundAfterARefit) {
+  Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  s.meshes[0].skinning.skin = 0;
+  EmbreeScene e(s);
+  for (glm::vec3& p : s.meshes[0].positions) p.x += 10.0f;
+  e.updateMeshVertices({0});
+  e.updateInstanceTransforms();
+  EXPECT_FALSE(e.intersect({0, 0, 0}, {0, 0, -1}, 0, kInf).hit);
+  EXPECT_TRUE(e.intersect({10, 0, 0}, {0, 0, -1}, 0, kInf).hit);
+}
+
 TEST(SurfaceOffset, SpawnedRaysDoNotHitTheirOwnSurfaceFarFromTheOrigin) {
   // 1e5 m from the origin the float spacing is ~8 mm: a naive epsilon fails there.
   for (float far : {0.0f, 1e3f, 1e5f}) {
