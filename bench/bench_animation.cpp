@@ -167,6 +167,7 @@ int run(const Options& o) {
   }
   Scene skinned = makeBuiltinScene("cornell");
   addSkinnedGrid(skinned, grid);
+  skinRestPose(skinned);
   row("cornell+skinned", skinned, 1);
   std::printf("wrote %s/bench_animation.csv\n", out.c_str());
   return 0;

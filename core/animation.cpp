@@ -128,11 +128,19 @@ glm::quat rotationOf(const glm::dmat4& world) {
 
 // Skinned meshes follow their joints: their instances stay at identity (glTF 2.0 §3.7.3.3:
 // the skinned mesh node's own transform is ignored), the vertices move.
-void skinAll(Scene& scene, const std::vector<glm::dmat4>& world, SceneMotion& motion) {
+// 'before' (null: none, no motion) gives the previous positions.
+void skinAll(Scene& scene, const std::vector<glm::dmat4>& world,
+             const std::vector<glm::dmat4>* before, SceneMotion& motion) {
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     Mesh& mesh = scene.meshes[m];
     if (!mesh.skinned() || size_t(mesh.skinning.skin) >= scene.skins.size()) continue;
-    skinMesh(mesh, skinningMatrices(scene.skins[size_t(mesh.skinning.skin)], world));
+    const Skin& skin = scene.skins[size_t(mesh.skinning.skin)];
+    skinMesh(mesh, skinningMatrices(skin, world));
+    if (before)
+      skinPositions(mesh.skinning, skinningMatrices(skin, *before),
+                    mesh.skinning.previousPositions);
+    else
+      mesh.skinning.previousPositions = mesh.positions;
     motion.deformedMeshes.push_back(int(m));
     motion.lightsMoved |= scene.materials[size_t(mesh.material)].isEmissive();
   }
@@ -171,13 +179,13 @@ SceneMotion poseScene(Scene& scene, double t, double previousT) {
       scene.cameras[size_t(k)].orientation = rotationOf(now[i]);
     }
   }
-  skinAll(scene, now, motion);
+  skinAll(scene, now, &before, motion);
   return motion;
 }
 
 void skinRestPose(Scene& scene) {
   SceneMotion ignored;
-  skinAll(scene, worldPoses(scene, std::nan("")), ignored);
+  skinAll(scene, worldPoses(scene, std::nan("")), nullptr, ignored);
 }
 
 }  // namespace photovr

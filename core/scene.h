@@ -122,6 +122,9 @@ struct MeshSkinning {
   std::vector<glm::vec4> tangents;
   std::vector<glm::u16vec4> joints;  // indices into the skin's joints
   std::vector<glm::vec4> weights;    // non-negative, summing to 1
+  // The skinned positions at the previous pose, for the G-buffer's motion vectors (a rigid
+  // instance's come from Instance::previousTransform).
+  std::vector<glm::vec3> previousPositions;
 };
 
 // One glTF primitive: a triangle list with one material. Stored once, referenced by

@@ -15,8 +15,12 @@ std::vector<glm::dmat4> skinningMatrices(const Skin& skin, const std::vector<glm
 
 // Writes the mesh's positions, normals and tangents from its bind pose (mesh.skinning):
 // p = M p_bind and n = normalize(M^-T n_bind), t = normalize(M t_bind) with the blended
-// M = sum_j w_j matrices[joint_j], in double. A vertex whose blended matrix is singular keeps
-// its bind normal.
+// M = sum_j w_j matrices[joint_j], in double, vertices in parallel. A vertex whose blended
+// matrix flattens its normal to zero keeps its bind normal.
 void skinMesh(Mesh& mesh, const std::vector<glm::dmat4>& matrices);
+
+// The bind positions alone, skinned by 'matrices' into 'out' (the previous pose's).
+void skinPositions(const MeshSkinning& skinning, const std::vector<glm::dmat4>& matrices,
+                   std::vector<glm::vec3>& out);
 
 }  // namespace photovr

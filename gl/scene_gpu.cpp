@@ -44,6 +44,12 @@ GLint wrapMode(Texture::Wrap w) {
   }
 }
 
+// A skinned mesh's previous pose; its current one until it has been posed.
+const std::vector<glm::vec3>& previousPositions(const Mesh& mesh) {
+  const std::vector<glm::vec3>& p = mesh.skinning.previousPositions;
+  return p.size() == mesh.positions.size() ? p : mesh.positions;
+}
+
 shared::GpuInstance gpuInstance(const Instance& inst, uint32_t sceneIndex) {
   shared::GpuInstance g{};
   g.model = inst.transform;
@@ -77,7 +83,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
 SceneGpu::~SceneGpu() {
   for (GpuMesh& m : meshes_) {
     api::DeleteVertexArrays(1, &m.vao);
-    api::DeleteBuffers(6, m.buffers);
+    api::DeleteBuffers(7, m.buffers);
   }
   api::DeleteBuffers(1, &instanceBuffer_);
   api::DeleteBuffers(1, &materialBuffer_);
@@ -96,6 +102,8 @@ void SceneGpu::uploadMesh(const Mesh& mesh) {
   g.material = mesh.material;
   api::CreateVertexArrays(1, &g.vao);
   attribute(g.vao, 0, g.buffers[0], 3, sizeof(glm::vec3), true);
+  if (mesh.skinned()) g.buffers[6] = makeBuffer(previousPositions(mesh));
+  attribute(g.vao, 5, mesh.skinned() ? g.buffers[6] : g.buffers[0], 3, sizeof(glm::vec3), true);
   attribute(g.vao, 1, g.buffers[1], 3, sizeof(glm::vec3), !mesh.normals.empty());
   attribute(g.vao, 2, g.buffers[2], 4, sizeof(glm::vec4), !mesh.tangents.empty());
   attribute(g.vao, 3, g.buffers[3], 2, sizeof(glm::vec2), !mesh.uv0.empty());
@@ -126,6 +134,7 @@ void SceneGpu::updateMeshVertices(const Scene& scene, const std::vector<int>& me
     replaceData(meshes_[size_t(m)].buffers[0], mesh.positions);
     replaceData(meshes_[size_t(m)].buffers[1], mesh.normals);
     replaceData(meshes_[size_t(m)].buffers[2], mesh.tangents);
+    replaceData(meshes_[size_t(m)].buffers[6], previousPositions(mesh));
   }
 }
 

@@ -14,7 +14,9 @@ namespace photovr::gl {
 
 struct GpuMesh {
   unsigned vao = 0;
-  unsigned buffers[6] = {};  // position, normal, tangent, uv0, uv1, index
+  // position, normal, tangent, uv0, uv1, index, previous position (skinned meshes only;
+  // the others read their positions there too)
+  unsigned buffers[7] = {};
   uint32_t indexCount = 0;
   int material = 0;
   uint32_t firstInstance = 0;  // into the instance buffer

@@ -9,6 +9,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec3 inPreviousPosition;  // a skinned mesh's last pose; else inPosition
 
 uniform uint uFirstInstance;
 
@@ -37,7 +38,8 @@ void main() {
   vUv0 = inUv0;
   vUv1 = inUv1;
   vClip = frame.viewProjectionUnjittered[eye] * world;
-  vPreviousClip = frame.previousViewProjection[eye] * inst.previousModel * vec4(inPosition, 1.0);
+  vPreviousClip =
+      frame.previousViewProjection[eye] * inst.previousModel * vec4(inPreviousPosition, 1.0);
   vEye = eye;
   vInstance = instance;
 #ifdef PHOTOVR_LAYERED

@@ -176,6 +176,41 @@ TEST(GBufferFeatures, AnimatedObjectsMotionVectorsPointToLastFramesPixel) {
   }
 }
 
+// The same motion by a skin: the rectangle's vertices follow one joint that moves as the
+// node above did, the instance stays at identity, so only the skinned previous positions
+// (a vertex attribute) can carry it.
+TEST(GBufferFeatures, SkinnedMotionVectorsPointToLastFramesPixel) {
+  const EyeCamera cam = monoCamera(32, 32);
+  Scene s = singleRectangle(plainMaterial(glm::vec3(1)), glm::mat4(1.0f));
+  Mesh& mesh = s.meshes[0];
+  mesh.skinning.skin = 0;
+  mesh.skinning.positions = mesh.positions;
+  mesh.skinning.normals = mesh.normals;
+  mesh.skinning.joints.assign(mesh.vertexCount(), glm::u16vec4(0));
+  mesh.skinning.weights.assign(mesh.vertexCount(), glm::vec4(1, 0, 0, 0));
+  SceneNode joint;
+  joint.scale = glm::dvec3(5.0);
+  s.nodes.push_back(joint);
+  s.skins.push_back({"one", {0}, {glm::dmat4(1.0)}});
+  AnimationChannel move;
+  move.node = 0;
+  move.path = AnimationPath::Translation;
+  move.times = {0.0f, 2.0f};
+  move.values = {{0, 0, -1, 0}, {2, 0, -1, 0}};
+  s.animations.push_back({"move", {move}});
+  poseScene(s, 0.5, 0.4);
+  ASSERT_EQ(s.instances[0].transform, glm::mat4(1.0f));
+  const Frame f = render(s, cam);
+  const float focalPx = cam.width / (cam.fov.left + cam.fov.right);
+  ASSERT_GT(covered(f.eye[0]), 0u);
+  for (size_t i = 0; i < f.eye[0].motion.size(); ++i) {
+    if (f.eye[0].visibility[i].x == kNoHitInstance) continue;
+    const glm::vec2 m = f.eye[0].motion[i];
+    ASSERT_NEAR(m.x, -0.1f * focalPx, 4.0f * kHalfRel * 0.1f * focalPx);
+    ASSERT_NEAR(m.y, 0.0f, 1e-3f);
+  }
+}
+
 TEST(GBufferFeatures, SideBySideFallbackMatchesLayeredRouting) {
   StereoRig rig;
   Scene s = singleRectangle(plainMaterial(glm::vec3(0.3f, 0.6f, 0.9f)),
