@@ -15,8 +15,10 @@
 
 #include "core/error.h"
 #include "core/gltf_loader.h"
+#include "core/animation.h"
 #include "core/gltf_writer.h"
 #include "core/scene.h"
+#include "tests/core/skinned_glb.h"
 #include "tests/core/test_dir.h"
 
 namespace photovr {
@@ -262,6 +264,69 @@ TEST(GltfFuzz, MutatedFilesLoadSoundlyOrFailWithOneLine) {
   // Both outcomes occur: the mutations are neither all harmless nor all fatal.
   EXPECT_GT(loaded, kIterations / 20);
   EXPECT_GT(refused, kIterations / 4);
+}
+
+// A skinned, animated file (tests/core/skinned_glb.h) mutated in its JSON, its container or
+// the bytes of its BIN chunk (joint indices, weights, inverse bind matrices, keys): loaded,
+// its skinned meshes keep their data consistent and pose at any time without a sanitizer
+// report; refused, in one line.
+void expectSkinsKeepThePromises(Scene& scene, const std::string& input) {
+  expectSceneKeepsThePromises(scene, input);
+  for (const Mesh& m : scene.meshes) {
+    if (!m.skinned()) continue;
+    ASSERT_LT(size_t(m.skinning.skin), scene.skins.size()) << input;
+    const Skin& skin = scene.skins[size_t(m.skinning.skin)];
+    ASSERT_EQ(m.skinning.positions.size(), m.positions.size()) << input;
+    ASSERT_EQ(m.skinning.weights.size(), m.positions.size()) << input;
+    for (size_t v = 0; v < m.skinning.joints.size(); ++v) {
+      for (int k = 0; k < 4; ++k) {
+        if (m.skinning.weights[v][k] > 0.0f) {
+          ASSERT_LT(m.skinning.joints[v][k], skin.joints.size()) << input;
+        }
+      }
+    }
+  }
+  for (double t : {0.25, 1.5, 7.0}) poseScene(scene, t, t - 0.01);
+}
+
+TEST(GltfFuzz, MutatedSkinnedFilesLoadSoundlyOrFailWithOneLine) {
+  constexpr int kSkinIterations = 1500;
+  const std::filesystem::path dir = testing::freshTestDir("photovr_gltf_fuzz_skin");
+  std::ifstream in(testing::skinnedFile(dir), std::ios::binary);
+  const std::string seed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  uint32_t jsonLength;
+  std::memcpy(&jsonLength, seed.data() + 12, 4);
+  const size_t binData = 20 + size_t(jsonLength) + 8;
+  const std::string path = (dir / "mutant.glb").string();
+  std::mt19937 rng(20261204);
+  int loaded = 0, refused = 0;
+  for (int it = 0; it < kSkinIterations; ++it) {
+    std::string input = seed;
+    if (rng() % 2) {  // bytes of the BIN chunk's data overwritten
+      for (int i = 0, n = 1 + int(rng() % 3); i < n; ++i)
+        input[binData + rng() % (seed.size() - binData)] = char(rng() % 256);
+    } else {
+      input = mutateWithBin(std::move(input), rng);
+    }
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << input;
+    try {
+      Scene scene = loadGltf(path);
+      expectSkinsKeepThePromises(scene, input);
+      ++loaded;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      ASSERT_EQ(what.find('\n'), std::string::npos) << what;
+      ASSERT_EQ(what.rfind(path, 0), 0u) << what;
+      ++refused;
+    } catch (const std::exception& e) {
+      FAIL() << "iteration " << it << ": " << e.what();
+    }
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  std::printf("skinned glTF fuzz: %d inputs, %d loaded, %d refused with one line\n",
+              kSkinIterations, loaded, refused);
+  EXPECT_GT(loaded, kSkinIterations / 20);
+  EXPECT_GT(refused, kSkinIterations / 20);
 }
 
 }  // namespace
