@@ -139,21 +139,6 @@ Image8 readImageRGBA8(const std::string& path) {
   return toRGBA8(std::move(in), path);
 }
 
-float linearToSrgb(float x) {
-  if (!(x > 0.0f)) return 0.0f;
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-}
-
-float srgbToLinear(float x) {
-  if (!(x > 0.0f)) return 0.0f;
-  return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
-}
-
-uint8_t toSrgb8(float linear) {
-  const float e = linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
-  return uint8_t(std::lround(e * 255.0f));
-}
-
 Image8 flipToImage(const std::vector<glm::u8vec4>& pixels, int width, int height) {
   Image8 image(width, height, 3);
   for (int y = 0; y < height; ++y)
