@@ -85,7 +85,8 @@ struct ViewConfig {
   FrameSettings settings;  // mode, spp, bounces, sample map, denoiser; seed 0, Sobol
   bool reproject = true, overlay = true, rotationGiven = false;
   float exposure = 1.0f;
-  double sceneStart = 0.0;  // --time: where an animated scene's clock starts
+  double sceneTime = 0.0;  // an animated scene's clock: --time, then real time while playing
+  bool animated = false, playing = true;
   std::string outDir = ".", screenshot;
 };
 
@@ -132,7 +133,8 @@ ViewConfig parseViewConfig(Args args) {
     throw UsageError("--screenshot: needs --frames N (it saves the last refresh)");
   c.scene = loadSceneSpec(o.text("--scene", "atrium"));
   applyEnvironmentOption(c.scene, o.text("--env", ""));
-  c.sceneStart = applyTimeOption(c.scene, o);
+  c.sceneTime = applyTimeOption(c.scene, o);
+  c.animated = isAnimated(c.scene);
   warnAboutScene(c.scene);
   c.view = resolveView(c.scene, o);
   if (!c.view.stereo || o.has("--fovy"))
@@ -206,6 +208,10 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
               t.eyePaths[1] ? 100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]) : 0.0);
   ImGui::Text("  %s, %.2f spp mean, %d bounces", frameModeName(s.last.settings.mode), s.meanSpp,
               s.last.settings.bounces);
+  if (c.animated) {
+    ImGui::Text("  scene at %.2f s, posed in %.2f ms", s.last.sceneTime, t.animateMs);
+    ImGui::Checkbox("play animation", &c.playing);
+  }
   int mode = int(c.settings.mode);
   if (ImGui::Combo("mode", &mode, kModes, 2)) c.settings.mode = FrameMode(mode);
   ImGui::SliderInt("spp", &c.settings.spp, 1, 64);
@@ -235,6 +241,7 @@ struct Session {
   std::optional<StereoFrame> shown;  // its display textures are what the compositor shows
   int saved = 0;
   Stats stats;
+  double sceneClock = hmd::hostSeconds();  // when the scene clock last advanced
 
   explicit Session(ViewConfig& config) : c(config) {
     head = openHead(c.hmd);  // bad pose files are reported before a window opens
@@ -255,7 +262,7 @@ struct Session {
     p.forDisplay = true;
     pipeline = std::make_unique<FramePipeline>(c.scene, p, context.get());
     pipeline->prepare(c.settings);
-    if (isAnimated(c.scene)) pipeline->animate(c.scene);  // plays on the wall clock
+    if (c.animated) pipeline->animate(c.scene);  // plays on the wall clock
     compositor =
         std::make_unique<display::Compositor>(c.headset, c.eyes, c.panel.x, c.panel.y, c.rotation);
     if (c.overlay) overlay = std::make_unique<ViewOverlay>(*context);
@@ -333,11 +340,13 @@ int runSession(ViewConfig& c) {
     }
     if (!s.pipeline->busy()) {
       const uint32_t index = started++;
-      // The scene clock runs from --time in real time, like the head's: a frame shows the
+      // The scene clock runs in real time while playing, like the head's: a frame shows the
       // scene as it is when the frame starts.
-      const double sceneTime = c.sceneStart + (hmd::hostSeconds() - s.head.start);
+      const double now = hmd::hostSeconds();
+      if (c.playing) c.sceneTime += now - s.sceneClock;
+      s.sceneClock = now;
       s.pipeline->start({s.eyesAt(s.head.now(), samplePosition(SamplerKind::Sobol, index)), 2,
-                         index, c.settings, sceneTime});
+                         index, c.settings, c.sceneTime});
     }
     if (s.shown) s.composite(in.framebufferSize);
     if (s.overlay) {
