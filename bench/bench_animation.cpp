@@ -30,15 +30,8 @@ void turnEveryInstance(Scene& s) {
   Animation turn;
   turn.name = "turn";
   for (size_t k = 0; k < s.instances.size(); ++k) {
-    SceneNode parent, child;
-    parent.hasMatrix = true;
-    parent.matrix = glm::dmat4(s.instances[k].transform);
-    child.parent = int(s.nodes.size());
-    child.instances = {int(k)};
-    s.nodes.push_back(parent);
-    s.nodes.push_back(child);
     AnimationChannel c;
-    c.node = int(s.nodes.size()) - 1;
+    c.node = addAnimatableNode(s, int(k));
     c.path = AnimationPath::Rotation;
     for (int key = 0; key <= 4; ++key) {
       const float half = 0.25f * float(M_PI) * float(key);  // half the angle: key x 90 degrees

@@ -183,6 +183,20 @@ SceneMotion poseScene(Scene& scene, double t, double previousT) {
   return motion;
 }
 
+int addAnimatableNode(Scene& scene, int instance) {
+  const Instance& inst = scene.instances[size_t(instance)];
+  SceneNode placement, child;
+  placement.name = inst.node + " placement";
+  placement.hasMatrix = true;
+  placement.matrix = glm::dmat4(inst.transform);
+  child.name = inst.node;
+  child.parent = int(scene.nodes.size());
+  child.instances = {instance};
+  scene.nodes.push_back(placement);
+  scene.nodes.push_back(child);
+  return child.parent + 1;
+}
+
 void skinRestPose(Scene& scene) {
   SceneMotion ignored;
   skinAll(scene, worldPoses(scene, std::nan("")), nullptr, ignored);

@@ -78,6 +78,11 @@ struct SceneMotion {
 // meshes are deformed to the pose at t (core/skinning.h).
 SceneMotion poseScene(Scene& scene, double t, double previousT);
 
+// For scenes made in code (built-in ones have no hierarchy): puts the instance on a new TRS
+// node, child of a matrix node holding its placement, and returns the TRS node's index, for
+// channels to animate in the instance's own frame.
+int addAnimatableNode(Scene& scene, int instance);
+
 // Deforms every skinned mesh to the node hierarchy's rest pose (no animation applied): the
 // loader's last step, since a skinned mesh's bind pose is not its rest pose.
 void skinRestPose(Scene& scene);

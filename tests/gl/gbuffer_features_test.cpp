@@ -153,12 +153,11 @@ TEST(GBufferFeatures, MotionVectorsPointToLastFramesPixel) {
 // Issue 23: an animated object's motion, not the camera's. The rectangle's node moves +x at
 // 1 m/s (a linear translation channel); posed at 0.5 s with the previous pose at 0.4 s, a
 // point now at the centre was 0.1 m to the left a frame ago, focal * 0.1 / 1 pixels.
-TEST(GBufferFeatures, AnimatedObjectsMotionVectorsPointToLastFramesPixel) {
-  const EyeCamera cam = monoCamera(32, 32);
-  Scene s = singleRectangle(plainMaterial(glm::vec3(1)), glm::mat4(1.0f));
+// Node 0 (scale 5) moving from (0, 0, -1) along +x at 1 m/s, posed at 0.5 s after 0.4 s.
+void addMovingNodeAndPose(Scene& s, std::vector<int> instances) {
   SceneNode node;
   node.scale = glm::dvec3(5.0);
-  node.instances = {0};
+  node.instances = std::move(instances);
   s.nodes.push_back(node);
   AnimationChannel move;
   move.node = 0;
@@ -167,6 +166,12 @@ TEST(GBufferFeatures, AnimatedObjectsMotionVectorsPointToLastFramesPixel) {
   move.values = {{0, 0, -1, 0}, {2, 0, -1, 0}};
   s.animations.push_back({"move", {move}});
   poseScene(s, 0.5, 0.4);
+}
+
+TEST(GBufferFeatures, AnimatedObjectsMotionVectorsPointToLastFramesPixel) {
+  const EyeCamera cam = monoCamera(32, 32);
+  Scene s = singleRectangle(plainMaterial(glm::vec3(1)), glm::mat4(1.0f));
+  addMovingNodeAndPose(s, {0});
   const Frame f = render(s, cam);
   const float focalPx = cam.width / (cam.fov.left + cam.fov.right);
   for (const glm::vec2& m : f.eye[0].motion) {
@@ -188,17 +193,8 @@ TEST(GBufferFeatures, SkinnedMotionVectorsPointToLastFramesPixel) {
   mesh.skinning.normals = mesh.normals;
   mesh.skinning.joints.assign(mesh.vertexCount(), glm::u16vec4(0));
   mesh.skinning.weights.assign(mesh.vertexCount(), glm::vec4(1, 0, 0, 0));
-  SceneNode joint;
-  joint.scale = glm::dvec3(5.0);
-  s.nodes.push_back(joint);
   s.skins.push_back({"one", {0}, {glm::dmat4(1.0)}});
-  AnimationChannel move;
-  move.node = 0;
-  move.path = AnimationPath::Translation;
-  move.times = {0.0f, 2.0f};
-  move.values = {{0, 0, -1, 0}, {2, 0, -1, 0}};
-  s.animations.push_back({"move", {move}});
-  poseScene(s, 0.5, 0.4);
+  addMovingNodeAndPose(s, {});  // the joint, carrying no instance
   ASSERT_EQ(s.instances[0].transform, glm::mat4(1.0f));
   const Frame f = render(s, cam);
   const float focalPx = cam.width / (cam.fov.left + cam.fov.right);

@@ -33,18 +33,8 @@ Scene animatedCornell() {
     const bool light =
         s.materials[size_t(s.meshes[size_t(s.instances[k].mesh)].material)].isEmissive();
     if (!light && s.instances[k].node != "short-block") continue;
-    SceneNode parent;
-    parent.name = s.instances[k].node + "-placement";
-    parent.hasMatrix = true;
-    parent.matrix = glm::dmat4(s.instances[k].transform);
-    SceneNode child;
-    child.name = s.instances[k].node;
-    child.parent = int(s.nodes.size());
-    child.instances = {int(k)};
-    s.nodes.push_back(parent);
-    s.nodes.push_back(child);
     AnimationChannel c;
-    c.node = int(s.nodes.size()) - 1;
+    c.node = addAnimatableNode(s, int(k));
     c.times = {0.0f, 1.0f};
     c.values = {glm::vec4(0.0f), glm::vec4(light ? 0.2f : 0.1f, 0.0f, 0.0f, 0.0f)};
     slide.channels.push_back(c);
