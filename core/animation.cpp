@@ -128,19 +128,29 @@ glm::quat rotationOf(const glm::dmat4& world) {
 
 // Skinned meshes follow their joints: their instances stay at identity (glTF 2.0 §3.7.3.3:
 // the skinned mesh node's own transform is ignored), the vertices move.
-// 'before' (null: none, no motion) gives the previous positions.
-void skinAll(Scene& scene, const std::vector<glm::dmat4>& world,
-             const std::vector<glm::dmat4>* before, SceneMotion& motion) {
+// The joints' world transforms at t and at the previous time (null: the rest pose, no
+// motion). When the mesh was last posed at exactly that previous time (a played sequence)
+// its positions are kept as the previous ones instead of being skinned again: the same
+// floats, as skinPositions and skinMesh compute a position by the same expression.
+struct JointPoses {
+  const std::vector<glm::dmat4>& now;
+  const std::vector<glm::dmat4>* before;
+  double t, previousT;
+};
+
+void skinAll(Scene& scene, const JointPoses& poses, SceneMotion& motion) {
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     Mesh& mesh = scene.meshes[m];
     if (!mesh.skinned() || size_t(mesh.skinning.skin) >= scene.skins.size()) continue;
     const Skin& skin = scene.skins[size_t(mesh.skinning.skin)];
-    skinMesh(mesh, skinningMatrices(skin, world));
-    if (before)
-      skinPositions(mesh.skinning, skinningMatrices(skin, *before),
-                    mesh.skinning.previousPositions);
-    else
-      mesh.skinning.previousPositions = mesh.positions;
+    MeshSkinning& s = mesh.skinning;
+    if (poses.before && s.posedAt == poses.previousT)
+      s.previousPositions = mesh.positions;
+    else if (poses.before)
+      skinPositions(s, skinningMatrices(skin, *poses.before), s.previousPositions);
+    skinMesh(mesh, skinningMatrices(skin, poses.now));
+    if (!poses.before) s.previousPositions = mesh.positions;
+    s.posedAt = poses.t;
     motion.deformedMeshes.push_back(int(m));
     motion.lightsMoved |= scene.materials[size_t(mesh.material)].isEmissive();
   }
@@ -179,7 +189,7 @@ SceneMotion poseScene(Scene& scene, double t, double previousT) {
       scene.cameras[size_t(k)].orientation = rotationOf(now[i]);
     }
   }
-  skinAll(scene, now, &before, motion);
+  skinAll(scene, {now, &before, t, previousT}, motion);
   return motion;
 }
 
@@ -199,7 +209,8 @@ int addAnimatableNode(Scene& scene, int instance) {
 
 void skinRestPose(Scene& scene) {
   SceneMotion ignored;
-  skinAll(scene, worldPoses(scene, std::nan("")), nullptr, ignored);
+  const double rest = std::nan("");
+  skinAll(scene, {worldPoses(scene, rest), nullptr, rest, rest}, ignored);
 }
 
 }  // namespace photovr

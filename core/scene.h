@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,7 @@ struct MeshSkinning {
   // The skinned positions at the previous pose, for the G-buffer's motion vectors (a rigid
   // instance's come from Instance::previousTransform).
   std::vector<glm::vec3> previousPositions;
+  double posedAt = std::numeric_limits<double>::quiet_NaN();  // the time 'positions' show
 };
 
 // One glTF primitive: a triangle list with one material. Stored once, referenced by

@@ -27,6 +27,9 @@ void translateScene(Scene& scene, const glm::dvec3& offset) {
   for (Light& l : scene.lights) l.position = moved(l.position, offset);
   for (Camera& c : scene.cameras) c.position = moved(c.position, offset);
   scene.origin -= offset;
+  // A skinned mesh's vertices stay in the old coordinates until its next pose, which must
+  // then skin its previous positions anew rather than keep these.
+  for (Mesh& m : scene.meshes) m.skinning.posedAt = std::numeric_limits<double>::quiet_NaN();
 }
 
 bool floatsTooCoarse(double reach, double extent, double fraction) {

@@ -72,6 +72,21 @@ TEST(Skinning, PosedVerticesBlendTheirJointsMatrices) {
   }
 }
 
+// The motion vectors' previous positions: skinned at the previous time, or, in a played
+// sequence, the last pose's positions kept; both the same floats.
+TEST(Skinning, PreviousPositionsAreThePreviousPoseWhetherKeptOrSkinned) {
+  Scene played = loadGltf(skinnedFile());
+  poseScene(played, 0.3, 0.2);
+  const std::vector<glm::vec3> at03 = skinnedMesh(played).positions;
+  poseScene(played, 0.5, 0.3);  // kept: the mesh was posed at 0.3
+  EXPECT_EQ(skinnedMesh(played).skinning.previousPositions, at03);
+  Scene fresh = loadGltf(skinnedFile());
+  poseScene(fresh, 0.5, 0.3);  // skinned at 0.3
+  EXPECT_EQ(skinnedMesh(fresh).skinning.previousPositions, at03);
+  EXPECT_EQ(skinnedMesh(fresh).positions, skinnedMesh(played).positions);
+  EXPECT_NE(at03, skinnedMesh(played).positions);  // it moved
+}
+
 TEST(Skinning, AMeshAlsoUsedRigidlyIsSkinnedOnACopy) {
   SkinOptions o;
   o.rigidUserToo = true;
