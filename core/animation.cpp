@@ -126,8 +126,6 @@ glm::quat rotationOf(const glm::dmat4& world) {
   return glm::quat(glm::normalize(glm::quat_cast(r)));
 }
 
-// Skinned meshes follow their joints: their instances stay at identity (glTF 2.0 §3.7.3.3:
-// the skinned mesh node's own transform is ignored), the vertices move.
 // The joints' world transforms at t and at the previous time (null: the rest pose, no
 // motion). When the mesh was last posed at exactly that previous time (a played sequence)
 // its positions are kept as the previous ones instead of being skinned again: the same
@@ -138,6 +136,8 @@ struct JointPoses {
   double t, previousT;
 };
 
+// Skinned meshes follow their joints: their instances stay at identity (glTF 2.0 §3.7.3.3:
+// the skinned mesh node's own transform is ignored), the vertices move.
 void skinAll(Scene& scene, const JointPoses& poses, SceneMotion& motion) {
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     Mesh& mesh = scene.meshes[m];
@@ -172,17 +172,22 @@ SceneMotion poseScene(Scene& scene, double t, double previousT) {
         inst.transform = inst.previousTransform = glm::mat4(1.0f);
         continue;
       }
-      inst.transform = glm::mat4(now[i]);
-      inst.previousTransform = glm::mat4(before[i]);
-      if (scene.hasMesh(inst.mesh))
+      const glm::mat4 pose(now[i]);
+      // Only an emitter that moved makes the light set rebuild (static ones under an
+      // animated file's nodes are posed too).
+      if (scene.hasMesh(inst.mesh) && pose != inst.transform)
         motion.lightsMoved |=
             scene.materials[size_t(scene.meshes[size_t(inst.mesh)].material)].isEmissive();
+      inst.transform = pose;
+      inst.previousTransform = glm::mat4(before[i]);
     }
     for (int k : n.lights) {
       Light& l = scene.lights[size_t(k)];
-      l.position = glm::vec3(now[i][3]);
-      l.direction = glm::vec3(glm::normalize(glm::dmat3(now[i]) * glm::dvec3(0, 0, -1)));
-      motion.lightsMoved = true;
+      const glm::vec3 position(now[i][3]);
+      const glm::vec3 direction(glm::normalize(glm::dmat3(now[i]) * glm::dvec3(0, 0, -1)));
+      motion.lightsMoved |= position != l.position || direction != l.direction;
+      l.position = position;
+      l.direction = direction;
     }
     for (int k : n.cameras) {
       scene.cameras[size_t(k)].position = glm::vec3(now[i][3]);

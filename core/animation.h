@@ -69,7 +69,7 @@ bool isAnimated(const Scene& scene);
 
 // What a pose changed, for the renderers to update no more than that.
 struct SceneMotion {
-  bool lightsMoved = false;         // a punctual light or an emissive instance was posed
+  bool lightsMoved = false;         // a punctual light or an emissive instance moved
   std::vector<int> deformedMeshes;  // skinned meshes whose vertices were rewritten
 };
 

@@ -111,6 +111,18 @@ TEST(AnimationPipeline, HybridSkinnedBar) {
                                 &testing::osmesaContext());
 }
 
+// The light set is rebuilt when an emitter moves, and only then.
+TEST(AnimationPipeline, OnlyAMovingEmitterMovesTheLights) {
+  Scene s = animatedCornell();
+  EXPECT_TRUE(poseScene(s, 0.5, 0.4).lightsMoved);
+  EXPECT_FALSE(poseScene(s, 0.5, 0.4).lightsMoved);  // posed again where it stands
+  std::vector<AnimationChannel>& channels = s.animations[0].channels;
+  std::erase_if(channels, [](const AnimationChannel& c) { return c.values[1].x == 0.2f; });
+  ASSERT_EQ(channels.size(), 1u);                    // the light's slide is gone
+  EXPECT_TRUE(poseScene(s, 0.7, 0.5).lightsMoved);   // the light back at its rest
+  EXPECT_FALSE(poseScene(s, 0.9, 0.7).lightsMoved);  // the block alone moves
+}
+
 // The posed frame must differ from the unposed one, or the tests above prove nothing.
 TEST(AnimationPipeline, PosingChangesTheFrame) {
   Scene played = animatedCornell();
