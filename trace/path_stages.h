@@ -17,6 +17,7 @@
 #include "trace/rng.h"
 #include "trace/stereo_reuse.h"
 #include "trace/surface.h"
+#include "trace/vertex_numbers.h"
 
 namespace photovr {
 
@@ -64,8 +65,11 @@ struct VertexRays {
 // 'record', 'reuse': see PathState (at most one of them).
 PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
                     FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
-VertexRays shadeVertex(const TraceContext& ctx, PathState& path, PathResult& result,
-                       ShadowRay& shadow, BatchRay& bounce);
+// The draws a vertex at 'depth' makes (drawVertexNumbers, drawBatchNumbers).
+VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
+// 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).
+VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
+                       PathResult& result, ShadowRay& shadow, BatchRay& bounce);
 void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked);
 // False: the path ended (it left the scene, or 'last' was set).
 bool advancePath(const TraceContext& ctx, PathState& path, PathResult& result, const TraceHit& th);

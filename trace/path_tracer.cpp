@@ -45,10 +45,10 @@ bool seesThrough(const BsdfParams& b) {
 // unblocked, weighted by the throughput and lobe split as they are at this vertex: by the
 // lobes themselves at the denoiser surface ('splitsHere'), by the path's share elsewhere.
 bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame,
-                 const BsdfVertex& bsdf, bool splitsHere, Sampler& sampler, ShadowRay& shadow) {
+                 const BsdfVertex& bsdf, bool splitsHere, const VertexNumbers& u,
+                 ShadowRay& shadow) {
   if (ctx.lights.empty()) return false;
-  const float uSelect = sampler.next();
-  const LightSample ls = ctx.lights.sample(p.hit.position, uSelect, sampler.next2());
+  const LightSample ls = ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
   if (!ls.valid()) return false;
   const glm::vec3 wiL = frame.toLocal(ls.direction);
   if (!sameSide(ls.direction, p.hit, wiL)) return false;
@@ -190,9 +190,13 @@ PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCoun
   return p;
 }
 
-VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result, ShadowRay& shadow,
-                       BatchRay& bounce) {
-  Sampler sampler = p.sampler.bounce(p.depth);
+VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {
+  return {!ctx.lights.empty(), int(depth) < ctx.settings.maxBounces &&
+                                   int(depth) + 1 >= ctx.settings.russianRouletteDepth};
+}
+
+VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
+                       PathResult& result, ShadowRay& shadow, BatchRay& bounce) {
   if (!p.albedoSet && !showsWhatIsBeyond(p.hit.bsdf)) {
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
@@ -208,13 +212,13 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
   const Frame frame = Frame::fromZ(p.hit.shadingNormal);
   const BsdfVertex bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
   VertexRays rays;
-  rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, sampler, shadow);
+  rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, u, shadow);
   result.rays += rays.shadow;
   if (p.reuse) {
     reuseBounce(ctx, p, frame, bsdf, result);
     return rays;
   }
-  const BsdfSample bs = sampleBsdf(bsdf, sampler.next2());
+  const BsdfSample bs = sampleBsdf(bsdf, u.bsdf);
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
   if (!sameSide(wi, p.hit, bs.wi)) return rays;
@@ -234,7 +238,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, PathResult& result
   p.survival = 1.0f;
   if (!p.last && int(p.depth) + 1 >= ctx.settings.russianRouletteDepth) {
     p.survival = std::min(1.0f, std::max(p.beta.r, std::max(p.beta.g, p.beta.b)));
-    p.last = !(sampler.next() < p.survival);
+    p.last = !(u.roulette < p.survival);
   }
   p.wi = wi;
   p.bsdfPdf = bs.pdf;
@@ -290,7 +294,9 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
   for (;;) {
     ShadowRay shadow;
     BatchRay bounce;
-    const VertexRays rays = shadeVertex(ctx, path, result, shadow, bounce);
+    const VertexNumbers u =
+        drawVertexNumbers(path.sampler, path.depth, vertexDraws(ctx, path.depth));
+    const VertexRays rays = shadeVertex(ctx, path, u, result, shadow, bounce);
     if (rays.shadow) {
       const BatchRay& r = shadow.ray;
       resolveShadow(result, shadow, ctx.embree.occluded(r.origin, r.dir, r.tnear, r.tfar));

@@ -3,14 +3,27 @@
 namespace photovr {
 namespace {
 
+// Sampling stage: the numbers of every active path's vertex, in one vectorised pass (all
+// active paths are at the same depth: they start together and advance a bounce a step).
+void drawAll(const TraceContext& ctx, WavefrontScratch& s) {
+  const size_t n = s.active.size();
+  s.samplers.resize(n);
+  s.numbers.resize(n);
+  for (size_t j = 0; j < n; ++j) s.samplers[j] = s.paths[s.active[j]].sampler;
+  const uint32_t depth = s.paths[s.active[0]].depth;
+  drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
+}
+
 // Shading stage: every active path's vertex; queues its shadow and bounce rays.
 void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
   s.bounceRays.clear(), s.bounceOwner.clear();
-  for (const uint32_t k : s.active) {
+  drawAll(ctx, s);
+  for (size_t j = 0; j < s.active.size(); ++j) {
+    const uint32_t k = s.active[j];
     ShadowRay shadow;
     BatchRay bounce;
-    const VertexRays rays = shadeVertex(ctx, s.paths[k], results[k], shadow, bounce);
+    const VertexRays rays = shadeVertex(ctx, s.paths[k], s.numbers[j], results[k], shadow, bounce);
     if (rays.shadow) {
       s.shadows.push_back(shadow);
       s.shadowRays.push_back(shadow.ray);

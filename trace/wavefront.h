@@ -29,6 +29,8 @@ struct PathStart {
 struct WavefrontScratch {
   std::vector<PathState> paths;
   std::vector<uint32_t> active, next;  // paths still going, by index
+  std::vector<PathSampler> samplers;   // the active paths' samplers ...
+  std::vector<VertexNumbers> numbers;  // ... and the numbers their vertices draw
   std::vector<ShadowRay> shadows;      // this bounce's shadow rays ...
   std::vector<uint32_t> shadowOwner;   // ... and the path each belongs to
   std::vector<BatchRay> shadowRays;
