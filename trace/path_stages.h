@@ -71,8 +71,10 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
 void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked);
-// False: the path ended (it left the scene, or 'last' was set).
-bool advancePath(const TraceContext& ctx, PathState& path, PathResult& result, const TraceHit& th);
+// False: the path ended (it left the scene, or 'last' was set). 'geometry': the hit's
+// (hitGeometry), when th.hit.
+bool advancePath(const TraceContext& ctx, PathState& path, PathResult& result, const TraceHit& th,
+                 const HitGeometry& geometry);
 // Once the path has ended: the albedo fallback, the NaN/Inf rejection, radiance.
 void finishPath(const PathState& path, PathResult& result);
 

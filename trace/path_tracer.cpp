@@ -254,11 +254,13 @@ void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked) {
   result.specular += shadow.specular;
 }
 
-bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, const TraceHit& th) {
+bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, const TraceHit& th,
+                 const HitGeometry& geometry) {
   SurfaceHit next;
   if (th.hit) {
-    next = p.last ? surfaceEmissionAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi)
-                  : surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, p.wi);
+    const HitRef ref{th.instance, th.triangle, th.b1, th.b2};
+    next = p.last ? surfaceEmissionAt(ctx.scene, ref, geometry, p.wi)
+                  : surfaceAt(ctx.scene, ref, geometry, p.wi);
   }
   if (th.hit) absorbAlong(ctx.scene, th, next, p.beta);
   addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
@@ -303,7 +305,9 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
     }
     if (!rays.bounce) break;
     const TraceHit th = ctx.embree.intersect(bounce.origin, bounce.dir, bounce.tnear, bounce.tfar);
-    if (!advancePath(ctx, path, result, th)) break;
+    const HitGeometry geometry =
+        th.hit ? hitGeometry(ctx.scene, {th.instance, th.triangle, th.b1, th.b2}) : HitGeometry{};
+    if (!advancePath(ctx, path, result, th, geometry)) break;
   }
   finishPath(path, result);
   return result;

@@ -130,48 +130,31 @@ BsdfParams materialAt(const Scene& scene, const Material& mat, const Interpolate
 }
 
 // What every hit gets: position and its error bound, the geometric normal facing the ray
-// and the side it hit. 'ng' receives the normal before that flip (the counter-clockwise
-// side's), from which the rest is built. Inlined: as a call of its own, surfaceAt's loads
-// of normals, uvs and textures waited for it to return instead of overlapping its loads of
-// the vertices (the hybrid's trace stage ran 2-5 % slower).
-[[gnu::always_inline]] inline SurfaceHit hitGeometry(const Scene& scene, uint32_t instance,
-                                                     uint32_t triangle, float b1, float b2,
-                                                     const glm::vec3& incoming, glm::vec3& ng) {
-  const Instance& inst = scene.instances[instance];
-  const Mesh& mesh = scene.meshes[inst.mesh];
-  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
-  const glm::mat4& m = inst.transform;
-  const glm::vec3 p0 = glm::vec3(m * glm::vec4(mesh.positions[idx[0]], 1.0f));
-  const glm::vec3 p1 = glm::vec3(m * glm::vec4(mesh.positions[idx[1]], 1.0f));
-  const glm::vec3 p2 = glm::vec3(m * glm::vec4(mesh.positions[idx[2]], 1.0f));
+// and the side it hit, from the hit's geometry (trace/hit_geometry.h).
+SurfaceHit fromGeometry(const HitRef& ref, const HitGeometry& g, const glm::vec3& incoming) {
   SurfaceHit h;
-  h.instance = instance;
-  h.triangle = triangle;
-  h.position = p0 + b1 * (p1 - p0) + b2 * (p2 - p0);
-  // Float error of the barycentric combination: a few ulp of the largest magnitude involved
-  // (pbrt-v4 §6.8.5's bound for this form is gamma(7) * sum |terms|; 8 eps is a safe cap).
-  const glm::vec3 mag = glm::abs(p0) + glm::abs(b1 * (p1 - p0)) + glm::abs(b2 * (p2 - p0));
-  h.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
-  ng = unitGeometricNormal(p1 - p0, p2 - p0);
-  h.frontFace = glm::dot(ng, incoming) < 0.0f;
-  h.geometricNormal = h.frontFace ? ng : -ng;
+  h.instance = ref.instance;
+  h.triangle = ref.triangle;
+  h.position = g.position;
+  h.positionError = g.positionError;
+  h.frontFace = glm::dot(g.ng, incoming) < 0.0f;
+  h.geometricNormal = h.frontFace ? g.ng : -g.ng;
   return h;
 }
 
 }  // namespace
 
-SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g,
                      const glm::vec3& incoming) {
-  glm::vec3 ng;
-  SurfaceHit h = hitGeometry(scene, instance, triangle, b1, b2, incoming, ng);
-  const Instance& inst = scene.instances[instance];
+  SurfaceHit h = fromGeometry(ref, g, incoming);
+  const Instance& inst = scene.instances[ref.instance];
   const Mesh& mesh = scene.meshes[inst.mesh];
   const Material& mat = scene.materials[mesh.material];
-  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
+  const uint32_t* idx = &mesh.indices[3 * size_t(ref.triangle)];
   const glm::mat4& m = inst.transform;
-  const Interpolated in = interpolate(mesh, idx, b1, b2);
+  const Interpolated in = interpolate(mesh, idx, ref.b1, ref.b2);
   const glm::mat3 normalToWorld = normalMatrix(glm::mat3(m));
-  glm::vec3 ns = safeNormalize(normalToWorld * in.normal, ng);
+  glm::vec3 ns = safeNormalize(normalToWorld * in.normal, g.ng);
   ns = applyNormalMap(scene, mat, in, glm::mat3(m), normalToWorld, ns);
   // Shading normal on the viewer's side of the geometry (back faces of double-sided
   // materials shade with the flipped normal, glTF 3.9.6).
@@ -184,12 +167,23 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   return h;
 }
 
+SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
+                     const glm::vec3& incoming) {
+  const HitRef ref{instance, triangle, b1, b2};
+  return surfaceAt(scene, ref, hitGeometry(scene, ref), incoming);
+}
+
+SurfaceHit surfaceEmissionAt(const Scene& scene, const HitRef& ref, const HitGeometry& g,
+                             const glm::vec3& incoming) {
+  SurfaceHit h = fromGeometry(ref, g, incoming);
+  h.emission = emissionAt(scene, ref.instance, ref.triangle, ref.b1, ref.b2, g.ng, incoming);
+  return h;
+}
+
 SurfaceHit surfaceEmissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1,
                              float b2, const glm::vec3& incoming) {
-  glm::vec3 ng;
-  SurfaceHit h = hitGeometry(scene, instance, triangle, b1, b2, incoming, ng);
-  h.emission = emissionAt(scene, instance, triangle, b1, b2, ng, incoming);
-  return h;
+  const HitRef ref{instance, triangle, b1, b2};
+  return surfaceEmissionAt(scene, ref, hitGeometry(scene, ref), incoming);
 }
 
 glm::vec3 unitGeometricNormal(const glm::vec3& e1, const glm::vec3& e2) {

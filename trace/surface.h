@@ -9,6 +9,7 @@
 
 #include "core/scene.h"
 #include "trace/bsdf.h"
+#include "trace/hit_geometry.h"
 
 namespace photovr {
 
@@ -33,6 +34,12 @@ SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
 // end their path in atrium, 17 % in cornell, and need no normals or textures.
 SurfaceHit surfaceEmissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1,
                              float b2, const glm::vec3& incoming);
+
+// The same from a hit whose geometry is known (hitGeometry, or a batch's hitGeometries).
+SurfaceHit surfaceAt(const Scene& scene, const HitRef& hit, const HitGeometry& geometry,
+                     const glm::vec3& incoming);
+SurfaceHit surfaceEmissionAt(const Scene& scene, const HitRef& hit, const HitGeometry& geometry,
+                             const glm::vec3& incoming);
 
 // Unit normal of the triangle with edges e1 = p1 - p0, e2 = p2 - p0 (counter-clockwise
 // side), +Y for a degenerate one: the geometric normal surfaceAt() starts from.

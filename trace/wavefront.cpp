@@ -45,13 +45,31 @@ void traceShadows(const TraceContext& ctx, std::span<PathResult> results, Wavefr
 
 // Bounce stage: traces the bounce rays, then moves each path to what its ray found; the
 // paths that go on are the next bounce's active set.
+// Geometry stage: every bounce hit's position, error bound and normal in one vectorised pass
+// (trace/hit_geometry.h); s.hitOf[j] indexes bounce ray j's, or is ~0u for a miss.
+void rebuildGeometry(const TraceContext& ctx, WavefrontScratch& s) {
+  const size_t n = s.bounceRays.size();
+  s.hits.clear();
+  s.hitOf.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const TraceHit th = s.bounceRays[j].traceHit();
+    s.hitOf[j] = th.hit ? uint32_t(s.hits.size()) : ~0u;
+    if (th.hit) s.hits.push_back({th.instance, th.triangle, th.b1, th.b2});
+  }
+  s.geometry.resize(s.hits.size());
+  hitGeometries(ctx.scene, s.hits, s.geometry);
+}
+
 void traceBounces(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   const size_t n = s.bounceRays.size();
   ctx.embree.intersectBatch(s.bounceRays.data(), n, ctx.settings.batchCall);
+  rebuildGeometry(ctx, s);
   s.next.clear();
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.bounceOwner[j];
-    if (advancePath(ctx, s.paths[k], results[k], s.bounceRays[j].traceHit())) s.next.push_back(k);
+    const HitGeometry& g = s.hitOf[j] == ~0u ? HitGeometry{} : s.geometry[s.hitOf[j]];
+    if (advancePath(ctx, s.paths[k], results[k], s.bounceRays[j].traceHit(), g))
+      s.next.push_back(k);
   }
   s.active.swap(s.next);
 }

@@ -36,6 +36,9 @@ struct WavefrontScratch {
   std::vector<BatchRay> shadowRays;
   std::vector<BatchRayHit> bounceRays;  // this bounce's bounce rays and hits ...
   std::vector<uint32_t> bounceOwner;    // ... and the path each belongs to
+  std::vector<HitRef> hits;             // the bounce rays' hits ...
+  std::vector<HitGeometry> geometry;    // ... their geometry ...
+  std::vector<uint32_t> hitOf;          // ... and, per bounce ray, its hit's index (~0u: none)
 };
 
 // This thread's scratch (thread_local: TBB tasks of one thread run one at a time).

@@ -1,0 +1,110 @@
+// The geometry stage (trace/hit_geometry.h): the batch's SIMD lanes give the scalar
+// function's bits, and the scalar function gives the glm code surfaceAt used before it, so
+// that no image changed when the stage came in.
+#include "trace/hit_geometry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/builtin_scenes.h"
+
+namespace photovr {
+namespace {
+
+// surfaceAt's geometry as it was written with glm (commit 88ad6c7), the reference.
+HitGeometry glmGeometry(const Scene& scene, const HitRef& hit) {
+  const Instance& inst = scene.instances[hit.instance];
+  const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
+  const uint32_t* idx = &mesh.indices[3 * size_t(hit.triangle)];
+  const glm::mat4& m = inst.transform;
+  const glm::vec3 p0 = glm::vec3(m * glm::vec4(mesh.positions[idx[0]], 1.0f));
+  const glm::vec3 p1 = glm::vec3(m * glm::vec4(mesh.positions[idx[1]], 1.0f));
+  const glm::vec3 p2 = glm::vec3(m * glm::vec4(mesh.positions[idx[2]], 1.0f));
+  HitGeometry g;
+  g.position = p0 + hit.b1 * (p1 - p0) + hit.b2 * (p2 - p0);
+  const glm::vec3 mag = glm::abs(p0) + glm::abs(hit.b1 * (p1 - p0)) + glm::abs(hit.b2 * (p2 - p0));
+  g.positionError = 8.0f * 1.1920929e-7f * std::max(mag.x, std::max(mag.y, mag.z));
+  const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+  const float len = glm::length(n);
+  g.ng = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
+  return g;
+}
+
+// Every float compared as bits: the stage may not change a single rounding.
+void expectSameBits(const HitGeometry& a, const HitGeometry& b, size_t i) {
+  EXPECT_EQ(a.position, b.position) << i;
+  EXPECT_EQ(a.positionError, b.positionError) << i;
+  EXPECT_EQ(a.ng, b.ng) << i;
+}
+
+// Random hits over every instance and triangle of a scene; 1001 is no multiple of 8, so a
+// partly filled last group of lanes runs too.
+std::vector<HitRef> randomHits(const Scene& scene, size_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<HitRef> hits;
+  while (hits.size() < count) {
+    const uint32_t instance = uint32_t(rng() % scene.instances.size());
+    const Mesh& mesh = scene.meshes[size_t(scene.instances[instance].mesh)];
+    if (mesh.triangleCount() == 0) continue;
+    const float b1 = u(rng), b2 = u(rng) * (1.0f - b1);
+    hits.push_back({instance, uint32_t(rng() % mesh.triangleCount()), b1, b2});
+  }
+  return hits;
+}
+
+TEST(HitGeometry, BatchEqualsOneByOneAndTheGlmFormBitForBit) {
+  for (const std::string& name : builtinSceneNames()) {
+    const Scene scene = makeBuiltinScene(name);
+    const std::vector<HitRef> hits = randomHits(scene, 1001, 7);
+    std::vector<HitGeometry> batch(hits.size());
+    hitGeometries(scene, hits, batch);
+    for (size_t i = 0; i < hits.size(); ++i) {
+      const HitGeometry one = hitGeometry(scene, hits[i]);
+      SCOPED_TRACE(name);
+      expectSameBits(batch[i], one, i);
+      expectSameBits(one, glmGeometry(scene, hits[i]), i);
+    }
+  }
+}
+
+// Far from the origin, scaled and sheared, and a degenerate triangle (its normal is +Y).
+TEST(HitGeometry, FarScaledAndDegenerateTrianglesAgreeToo) {
+  Scene scene;
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0.3f, 0}, {0.2f, 1, 0.7f}, {2, 2, 2}, {4, 4, 4}};
+  mesh.indices = {0, 1, 2, 3, 4, 3, 0, 3, 4};  // the last two are degenerate (collinear)
+  scene.meshes.push_back(mesh);
+  const glm::mat4 far = glm::mat4(glm::vec4(3e3f, 1.0f, 0, 0), glm::vec4(0, 2e-3f, 0.5f, 0),
+                                  glm::vec4(0.1f, 0, 7.0f, 0), glm::vec4(1e7f, -3e6f, 2e5f, 1));
+  scene.instances.push_back({0, glm::mat4(1.0f), glm::mat4(1.0f), "near"});
+  scene.instances.push_back({0, far, far, "far"});
+  std::vector<HitRef> hits;
+  for (uint32_t instance = 0; instance < 2; ++instance)
+    for (uint32_t triangle = 0; triangle < 3; ++triangle) {
+      for (float b : {0.0f, 0.1f, 0.45f}) hits.push_back({instance, triangle, b, 0.5f * b});
+    }
+  std::vector<HitGeometry> batch(hits.size());
+  hitGeometries(scene, hits, batch);
+  for (size_t i = 0; i < hits.size(); ++i) {
+    expectSameBits(batch[i], hitGeometry(scene, hits[i]), i);
+    expectSameBits(batch[i], glmGeometry(scene, hits[i]), i);
+    if (hits[i].triangle > 0) {
+      EXPECT_EQ(batch[i].ng, glm::vec3(0, 1, 0)) << i;
+    }
+  }
+}
+
+TEST(HitGeometry, AnEmptyBatchIsNothing) {
+  const Scene scene = makeBuiltinScene("cornell");
+  std::vector<HitGeometry> none;
+  hitGeometries(scene, {}, none);
+  EXPECT_TRUE(none.empty());
+}
+
+}  // namespace
+}  // namespace photovr
