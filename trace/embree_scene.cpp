@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "trace/rng.h"
+#include "trace/surface.h"
 #include "trace/texture_sampling.h"
 
 namespace photovr {
@@ -43,15 +44,7 @@ struct FilterData {
 };
 
 float maskAlpha(const FilterData& d, uint32_t triangle, float u, float v) {
-  const uint32_t* idx = &d.mesh->indices[3 * size_t(triangle)];
-  auto lerp = [&](const std::vector<glm::vec2>& a) {
-    if (a.empty()) return glm::vec2(0.0f);
-    return (1.0f - u - v) * a[idx[0]] + u * a[idx[1]] + v * a[idx[2]];
-  };
-  const glm::vec4 base = d.material->baseColorFactor *
-                         sampleSlot(*d.scene, d.material->baseColorTexture, lerp(d.mesh->uv0),
-                                    lerp(d.mesh->uv1), true, glm::vec4(1.0f));
-  return base.a;
+  return surfaceAlpha(*d.scene, *d.mesh, *d.material, triangle, u, v);
 }
 
 uint32_t floatBits(float f) {

@@ -65,11 +65,14 @@ constexpr int kMaxEmissionPoints = 64;
 float meanEmission(const Scene& scene, uint32_t instance, uint32_t t, const glm::vec3& normal) {
   const Mesh& mesh = scene.meshes[scene.instances[instance].mesh];
   const Material& mat = scene.materials[mesh.material];
-  const TextureRef& ref = mat.unlit ? mat.baseColorTexture : mat.emissiveTexture;
-  if (!ref.valid()) return luminance(mat.emission());
+  const TextureRef& emissive = mat.unlit ? mat.baseColorTexture : mat.emissiveTexture;
+  // What varies over the triangle: the emission texture, else (MASK, BLEND) the alpha's.
+  const bool opaque = mat.alphaMode == AlphaMode::Opaque;
+  const TextureRef& ref = emissive.valid() || opaque ? emissive : mat.baseColorTexture;
+  if (!ref.valid() && opaque) return luminance(mat.emission());
   const std::vector<glm::vec2>& uv = ref.texCoord == 1 ? mesh.uv1 : mesh.uv0;
   int points = 1;
-  if (uv.size() == mesh.positions.size()) {
+  if (ref.valid() && uv.size() == mesh.positions.size()) {
     const uint32_t* idx = &mesh.indices[3 * size_t(t)];
     const glm::vec2 d1 = uv[idx[1]] - uv[idx[0]], d2 = uv[idx[2]] - uv[idx[0]];
     const Texture& tex = scene.textures[size_t(ref.texture)];
@@ -83,7 +86,9 @@ float meanEmission(const Scene& scene, uint32_t instance, uint32_t t, const glm:
     const float ux = (float(k) + 0.5f) / float(points);
     const float uy = std::fmod(0.5f + float(k) * 0.6180339887f, 1.0f);
     const float su = std::sqrt(ux);
-    sum += luminance(emissionAt(scene, instance, t, su * (1.0f - uy), su * uy, normal, -normal));
+    const float b1 = su * (1.0f - uy), b2 = su * uy;
+    sum += luminance(emissionAt(scene, instance, t, b1, b2, normal, -normal)) *
+           coverageAt(scene, instance, t, b1, b2);
   }
   return sum / float(points);
 }
@@ -231,7 +236,11 @@ LightSample LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& p
   s.direction = d / s.distance;
   const float cosLight = std::abs(glm::dot(tri.normal, s.direction));
   if (!(cosLight > 0.0f)) return s;
-  s.radiance = emissionAt(scene_, tri.instance, tri.triangle, b1, b2, tri.normal, s.direction);
+  // Times the emitter's coverage: BSDF rays meet a BLEND emitter with probability alpha and
+  // never a MASK hole, so NEE counts it as much (without it, NEE + MIS counted a BLEND
+  // emitter's light between alpha and 1 times).
+  s.radiance = emissionAt(scene_, tri.instance, tri.triangle, b1, b2, tri.normal, s.direction) *
+               coverageAt(scene_, tri.instance, tri.triangle, b1, b2);
   if (s.radiance == glm::vec3(0.0f)) return s;
   s.pdf = dist2 / (cosLight * tri.area);  // area density converted to solid angle
   return s;

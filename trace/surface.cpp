@@ -1,5 +1,6 @@
 #include "trace/surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -200,6 +201,25 @@ glm::vec3 emissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, f
   const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
   return emission(scene, mat, attributeAt(mesh.uv0, idx, b1, b2),
                   attributeAt(mesh.uv1, idx, b1, b2), frontFace);
+}
+
+float surfaceAlpha(const Scene& scene, const Mesh& mesh, const Material& material,
+                   uint32_t triangle, float b1, float b2) {
+  const uint32_t* idx = &mesh.indices[3 * size_t(triangle)];
+  const glm::vec4 base = material.baseColorFactor * sampleSlot(scene, material.baseColorTexture,
+                                                               attributeAt(mesh.uv0, idx, b1, b2),
+                                                               attributeAt(mesh.uv1, idx, b1, b2),
+                                                               true, glm::vec4(1.0f));
+  return base.a;
+}
+
+float coverageAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2) {
+  const Mesh& mesh = scene.meshes[scene.instances[instance].mesh];
+  const Material& mat = scene.materials[mesh.material];
+  if (mat.alphaMode == AlphaMode::Opaque) return 1.0f;
+  const float alpha = surfaceAlpha(scene, mesh, mat, triangle, b1, b2);
+  if (mat.alphaMode == AlphaMode::Mask) return alpha < mat.alphaCutoff ? 0.0f : 1.0f;
+  return std::clamp(alpha, 0.0f, 1.0f);
 }
 
 glm::vec3 emittedRadiance(const Scene&, const SurfaceHit& hit) {

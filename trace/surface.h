@@ -50,6 +50,17 @@ glm::vec3 unitGeometricNormal(const glm::vec3& e1, const glm::vec3& e2);
 glm::vec3 emissionAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
                      const glm::vec3& geometricNormal, const glm::vec3& incoming);
 
+// glTF alpha at a point of a triangle of 'mesh' (material's base colour factor x texture
+// alpha): what the any-hit filter tests against MASK's cutoff and BLEND's coin.
+float surfaceAlpha(const Scene& scene, const Mesh& mesh, const Material& material,
+                   uint32_t triangle, float b1, float b2);
+
+// The probability that a ray meets the surface at this point instead of passing through it,
+// as the any-hit filter decides: MASK 0 in its holes and 1 elsewhere, BLEND its alpha,
+// opaque 1. Light sampling scales an emitter's radiance by it, so that NEE sees on average
+// what BSDF rays see (an emitter's hole or a half-transparent emitter is not counted whole).
+float coverageAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2);
+
 // Origin for a ray leaving 'hit' along 'dir': the hit moved off the surface along the
 // geometric normal by its error bound (Wachter & Binder, "A Fast and Robust Method for
 // Avoiding Self-Intersection", Ray Tracing Gems ch. 6, 2019: integer-ulp offset far from
