@@ -789,8 +789,8 @@ void convertDielectric(Loader& ld, const tg::Material& gm, Material& m, const st
   }
 }
 
-// KHR_materials_sheen and _clearcoat (their specifications' defaults). The coat's own
-// normal map is not applied: the coat takes the base's shading normal, with a warning.
+// KHR_materials_sheen and _clearcoat (their specifications' defaults), with the coat's own
+// normal map and its scale.
 void convertLayers(Loader& ld, const tg::Material& gm, Material& m, const std::string& where) {
   if (const tg::Value* e = materialExtension(gm, "KHR_materials_sheen")) {
     m.sheenColorFactor = vec3Or(*e, "sheenColorFactor", glm::vec3(0.0f));
@@ -803,10 +803,10 @@ void convertLayers(Loader& ld, const tg::Material& gm, Material& m, const std::s
     m.clearcoatRoughnessFactor = numberOr(*e, "clearcoatRoughnessFactor", 0.0f);
     m.clearcoatTexture = extensionTexture(ld, *e, "clearcoatTexture", where);
     m.clearcoatRoughnessTexture = extensionTexture(ld, *e, "clearcoatRoughnessTexture", where);
-    if (e->Has("clearcoatNormalTexture"))
-      ld.warn(where +
-              ": KHR_materials_clearcoat clearcoatNormalTexture is not used (the coat "
-              "takes the base's shading normal)");
+    m.clearcoatNormalTexture = extensionTexture(ld, *e, "clearcoatNormalTexture", where);
+    if (e->Has("clearcoatNormalTexture") && e->Get("clearcoatNormalTexture").IsObject() &&
+        e->Get("clearcoatNormalTexture").Has("scale"))
+      m.clearcoatNormalScale = numberOr(e->Get("clearcoatNormalTexture"), "scale", 1.0f);
   }
 }
 
@@ -873,7 +873,8 @@ void checkMaterial(const Loader& ld, const Material& m) {
     ld.fail(what + "metallicFactor and roughnessFactor must be in [0, 1]");
   if (!within(m.occlusionStrength, 0, 1)) ld.fail(what + "occlusion strength must be in [0, 1]");
   if (!within(m.alphaCutoff, 0, 1e30f)) ld.fail(what + "alphaCutoff must be >= 0");
-  if (!std::isfinite(m.normalScale)) ld.fail(what + "normal scale must be finite");
+  if (!std::isfinite(m.normalScale) || !std::isfinite(m.clearcoatNormalScale))
+    ld.fail(what + "normal scale must be finite");
   const glm::vec3 e = m.emissiveFactor;
   const float brightest = std::max({e.r, e.g, e.b}) * m.emissiveStrength;
   if (!(e.r >= 0 && e.g >= 0 && e.b >= 0 && m.emissiveStrength >= 0 && brightest <= 1e20f))
@@ -1019,7 +1020,9 @@ void finishShading(Loader& ld, Mesh& mesh) {
   }
   if (mesh.normals.empty()) makeFlatShaded(mesh);  // §3.7.2.1: flat normals when absent
   const Material& material = ld.scene.materials[size_t(mesh.material)];
-  if (material.normalTexture.valid() && mesh.tangents.empty()) computeTangents(mesh);
+  const bool normalMapped =
+      material.normalTexture.valid() || material.clearcoatNormalTexture.valid();
+  if (normalMapped && mesh.tangents.empty()) computeTangents(mesh);
 }
 
 // KHR_draco_mesh_compression: the primitive's attributes and triangle list from its Draco

@@ -227,14 +227,16 @@ tg::Value vec3Value(const glm::vec3& v) {
 }
 
 // A textureInfo inside an extension, as setTexture writes the core ones.
+// 'scale': a normal texture's (written where it is not glTF's default 1).
 void addTextureValue(Writer& w, tg::Value::Object& ext, const char* key, const TextureRef& ref,
-                     const std::string& material) {
+                     const std::string& material, float scale = 1.0f) {
   if (!ref.valid()) return;
   tg::TextureInfo info;
   setTexture(w, info, ref, material);
   tg::Value::Object o;
   o["index"] = tg::Value(info.index);
   if (info.texCoord != 0) o["texCoord"] = tg::Value(info.texCoord);
+  if (scale != 1.0f) o["scale"] = tg::Value(double(scale));
   if (!info.extensions.empty()) {
     tg::Value::Object e(info.extensions.begin(), info.extensions.end());
     o["extensions"] = tg::Value(e);
@@ -274,12 +276,14 @@ void setDielectric(Writer& w, const Material& m, tg::Material& out) {
   }
   if (m.clearcoatFactor != core.clearcoatFactor || m.clearcoatTexture.valid() ||
       m.clearcoatRoughnessFactor != core.clearcoatRoughnessFactor ||
-      m.clearcoatRoughnessTexture.valid()) {
+      m.clearcoatRoughnessTexture.valid() || m.clearcoatNormalTexture.valid()) {
     tg::Value::Object e{
         {"clearcoatFactor", tg::Value(double(m.clearcoatFactor))},
         {"clearcoatRoughnessFactor", tg::Value(double(m.clearcoatRoughnessFactor))}};
     addTextureValue(w, e, "clearcoatTexture", m.clearcoatTexture, m.name);
     addTextureValue(w, e, "clearcoatRoughnessTexture", m.clearcoatRoughnessTexture, m.name);
+    addTextureValue(w, e, "clearcoatNormalTexture", m.clearcoatNormalTexture, m.name,
+                    m.clearcoatNormalScale);
     addExtension(w, out, "KHR_materials_clearcoat", std::move(e));
   }
   if (!m.thinWalled()) {

@@ -97,6 +97,8 @@ struct Material {
   float clearcoatRoughnessFactor = 0.0f;
   TextureRef clearcoatTexture;           // linear, R = strength
   TextureRef clearcoatRoughnessTexture;  // linear, G = roughness
+  TextureRef clearcoatNormalTexture;     // linear, tangent space: the coat's own normal map
+  float clearcoatNormalScale = 1.0f;
 
   glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
   bool isEmissive() const;

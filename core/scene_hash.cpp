@@ -20,12 +20,12 @@ static void hashMaterial(Hasher& h, const Material& m) {
   h.value(m.transmissionFactor).value(m.thicknessFactor).value(m.attenuationColor);
   h.value(m.attenuationDistance).value(m.unlit);
   h.value(m.sheenColorFactor).value(m.sheenRoughnessFactor);
-  h.value(m.clearcoatFactor).value(m.clearcoatRoughnessFactor);
+  h.value(m.clearcoatFactor).value(m.clearcoatRoughnessFactor).value(m.clearcoatNormalScale);
   for (const TextureRef* r :
        {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
         &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture,
         &m.sheenColorTexture, &m.sheenRoughnessTexture, &m.clearcoatTexture,
-        &m.clearcoatRoughnessTexture})
+        &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture})
     h.value(r->texture)
         .value(r->texCoord)
         .value(r->transform.offset)

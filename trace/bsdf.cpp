@@ -424,10 +424,16 @@ struct LayerEval {
   float coatPdf = 0.0f, sheenPdf = 0.0f;
 };
 
+// wi in the coat's frame.
+glm::vec3 toCoat(const BsdfVertex& v, const glm::vec3& wi) {
+  return v.coatTilted ? v.coatFrame.toLocal(wi) : wi;
+}
+
 LayerEval evalLayers(const BsdfVertex& v, const glm::vec3& wi) {
   LayerEval e;
   const float cosI = std::min(std::abs(wi.z), 1.0f);
-  const float coatIn = 1.0f - v.coat * coatFresnel(cosI);
+  const glm::vec3 coatWi = toCoat(v, wi);
+  const float coatIn = 1.0f - v.coat * coatFresnel(std::min(std::abs(coatWi.z), 1.0f));
   const float coatFilter = (1.0f - v.coatFresnelWo) * coatIn;
   float sheenFilter = 1.0f, sheenNormal = 1.0f;
   if (v.sheenMax > 0.0f) {
@@ -439,10 +445,13 @@ LayerEval evalLayers(const BsdfVertex& v, const glm::vec3& wi) {
   e.baseFilter = coatFilter * sheenFilter;
   glm::vec3 h;
   if (!(wi.z > 0.0f) || !halfVector(v.wo, wi, h)) return e;
-  if (v.coat > 0.0f) {
-    const float d = ggxD(h, v.coatAlpha);
+  glm::vec3 hc = h;
+  if (v.coat > 0.0f && v.coatWo.z > 0.0f && coatWi.z > 0.0f &&
+      (!v.coatTilted || halfVector(v.coatWo, coatWi, hc))) {
+    const float d = ggxD(hc, v.coatAlpha);
     const float g = v.coatG1OverCosWo * d * 0.25f;  // the VNDF through reflection
-    e.coat = glm::vec3(v.coat * coatFresnel(glm::dot(v.wo, h)) * g * ggxG1OverCos(wi, v.coatAlpha));
+    e.coat = glm::vec3(v.coat * coatFresnel(glm::dot(v.coatWo, hc)) * g *
+                       ggxG1OverCos(coatWi, v.coatAlpha));
     e.coatPdf = g;
   }
   if (v.sheenMax > 0.0f) {
@@ -458,14 +467,24 @@ LayerEval evalLayers(const BsdfVertex& v, const glm::vec3& wi) {
 void prepareLayers(const BsdfParams& p, BsdfVertex& v) {
   const auto unit = [](float x) { return isFinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f; };
   v.coat = unit(p.clearcoat);
+  v.coatWo = v.wo;
+  const glm::vec3 n = p.coatNormal;
+  if (v.coat > 0.0f && n != glm::vec3(0.0f, 0.0f, 1.0f) && isFinite(n) && n.z > 0.0f) {
+    v.coatTilted = true;
+    v.coatFrame = Frame::fromZ(glm::normalize(n));
+    v.coatWo = v.coatFrame.toLocal(v.wo);
+  }
   v.sheenColor = glm::clamp(isFinite(p.sheenColor) ? p.sheenColor : glm::vec3(0.0f), 0.0f, 1.0f);
   v.sheenMax = std::max({v.sheenColor.r, v.sheenColor.g, v.sheenColor.b});
   v.layered = v.coat > 0.0f || v.sheenMax > 0.0f;
   if (!v.layered) return;
   const float nv = v.wo.z;
   v.coatAlpha = roughnessToAlpha(p.clearcoatRoughness);
-  v.coatG1OverCosWo = ggxG1OverCos(v.wo, v.coatAlpha);
-  v.coatFresnelWo = v.coat * coatFresnel(nv);
+  // Seen from behind the coat's own normal (a tilted coat), the coat lobe is 0 and is not
+  // sampled; its Fresnel still filters what passes, at |cos|, so the BSDF stays reciprocal.
+  const bool coatFacesWo = v.coatWo.z > 0.0f;
+  v.coatG1OverCosWo = coatFacesWo ? ggxG1OverCos(v.coatWo, v.coatAlpha) : 0.0f;
+  v.coatFresnelWo = v.coat * coatFresnel(std::abs(v.coatWo.z));
   v.sheenRoughness = unit(p.sheenRoughness);
   v.sheenAlpha = sheenRoughnessToAlpha(v.sheenRoughness);
   v.sheenLambdaWo = charlieLambda(nv, v.sheenAlpha);
@@ -474,7 +493,7 @@ void prepareLayers(const BsdfParams& p, BsdfVertex& v) {
   // base's (1 - c F_c)(1 - max(sheen) E) times 1 (its albedo is not known here, and a dark
   // base under a coat must still be sampled where the coat is weak).
   const float through = 1.0f - v.coatFresnelWo;
-  const float coat = v.coatFresnelWo;
+  const float coat = coatFacesWo ? v.coatFresnelWo : 0.0f;
   const float sheen = through * luminance(v.sheenColor) * std::min(v.sheenAlbedoWo, 1.0f);
   const float base = through * (1.0f - v.sheenMax * std::min(v.sheenAlbedoWo, 1.0f));
   const float sum = coat + sheen + base;
@@ -507,8 +526,11 @@ BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
     u.x = coat ? remapLobeNumber(u.x, pCoat, true)
                : std::min((u.x - pCoat) / v.sheenProbability, 0x1.fffffep-1f);
     if (coat) {
-      const glm::vec3 h = sampleGgxVndf(v.wo, v.coatAlpha, u);
-      s.wi = 2.0f * glm::dot(v.wo, h) * h - v.wo;
+      const glm::vec3 h = sampleGgxVndf(v.coatWo, v.coatAlpha, u);
+      const glm::vec3 coatWi = 2.0f * glm::dot(v.coatWo, h) * h - v.coatWo;
+      // Below the coat's own horizon the coat has no density (evalLayers): no sample.
+      if (v.coatTilted && !(coatWi.z > 0.0f)) return {};
+      s.wi = v.coatTilted ? v.coatFrame.toWorld(coatWi) : coatWi;
     } else {
       s.wi = sampleUniformHemisphere(u);
     }

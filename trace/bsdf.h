@@ -57,6 +57,12 @@ struct BsdfParams {
   float sheenRoughness = 0.0f;
   float clearcoat = 0.0f;
   float clearcoatRoughness = 0.0f;
+  // The coat's own normal, unit, in the shading frame (z = the base's shading normal):
+  // +z unless the coat's normal map (clearcoatNormalTexture) or the base's tilts one
+  // against the other (glTF: without its own map the coat takes the interpolated normal,
+  // not the base's normal-mapped one). The coat lobe and its Fresnel filter are evaluated
+  // about it; the base and sheen about z.
+  glm::vec3 coatNormal{0.0f, 0.0f, 1.0f};
 };
 
 // GGX alpha from glTF perceptual roughness (glTF 2.0 Appendix B: alpha = roughness^2),
@@ -259,7 +265,10 @@ struct BsdfVertex {
   float coat = 0.0f;  // c
   float coatAlpha = kMinAlpha;
   float coatG1OverCosWo = 0.0f;
-  float coatFresnelWo = 0.0f;  // c F_c(n.v)
+  float coatFresnelWo = 0.0f;          // c F_c(n_c.v)
+  bool coatTilted = false;             // coatNormal is not +z: the coat has a frame of its own ...
+  Frame coatFrame;                     // ... its z the coat normal, in the shading frame
+  glm::vec3 coatWo{0.0f, 0.0f, 1.0f};  // wo in the coat's frame
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f;
   float sheenAlpha = 1.0f;

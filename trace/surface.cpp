@@ -59,22 +59,21 @@ glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
   return len > 0.0f && std::isfinite(len) ? v / len : fallback;
 }
 
-// Normal map in the interpolated tangent frame (glTF 3.9.3), as the G-buffer shader does.
-glm::vec3 applyNormalMap(const Scene& scene, const Material& mat, const Interpolated& in,
-                         const glm::mat3& toWorld, const glm::mat3& normalToWorld, glm::vec3 n) {
-  if (!mat.normalTexture.valid() || glm::dot(glm::vec3(in.tangent), glm::vec3(in.tangent)) == 0.0f)
-    return n;
+// Normal map 'map' with its scale in the interpolated tangent frame (glTF 3.9.3), as the
+// G-buffer shader does.
+glm::vec3 applyNormalMap(const Scene& scene, const TextureRef& map, float scale,
+                         const Interpolated& in, const glm::mat3& toWorld, glm::vec3 n) {
+  if (!map.valid() || glm::dot(glm::vec3(in.tangent), glm::vec3(in.tangent)) == 0.0f) return n;
   const glm::vec3 t0 = safeNormalize(toWorld * glm::vec3(in.tangent), glm::vec3(0.0f));
   const glm::vec3 t = safeNormalize(t0 - n * glm::dot(n, t0), glm::vec3(0.0f));
   if (t == glm::vec3(0.0f)) return n;
   const glm::vec3 b = glm::cross(n, t) * (in.tangent.w < 0.0f ? -1.0f : 1.0f);
-  glm::vec3 tn = glm::vec3(sampleSlot(scene, mat.normalTexture, in.uv0, in.uv1, false,
-                                      glm::vec4(0.5f, 0.5f, 1.0f, 1.0f))) *
-                     2.0f -
-                 1.0f;
-  tn.x *= mat.normalScale;
-  tn.y *= mat.normalScale;
-  (void)normalToWorld;
+  glm::vec3 tn =
+      glm::vec3(sampleSlot(scene, map, in.uv0, in.uv1, false, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f))) *
+          2.0f -
+      1.0f;
+  tn.x *= scale;
+  tn.y *= scale;
   return safeNormalize(tn.x * t + tn.y * b + tn.z * n, n);
 }
 
@@ -155,13 +154,21 @@ SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g
   const glm::mat4& m = inst.transform;
   const Interpolated in = interpolate(mesh, idx, ref.b1, ref.b2);
   const glm::mat3 normalToWorld = normalMatrix(glm::mat3(m));
-  glm::vec3 ns = safeNormalize(normalToWorld * in.normal, g.ng);
-  ns = applyNormalMap(scene, mat, in, glm::mat3(m), normalToWorld, ns);
+  const glm::vec3 interpolated = safeNormalize(normalToWorld * in.normal, g.ng);
+  glm::vec3 ns =
+      applyNormalMap(scene, mat.normalTexture, mat.normalScale, in, glm::mat3(m), interpolated);
   // Shading normal on the viewer's side of the geometry (back faces of double-sided
   // materials shade with the flipped normal, glTF 3.9.6).
   if (glm::dot(ns, h.geometricNormal) < 0.0f) ns = -ns;
   h.shadingNormal = ns;
   h.bsdf = materialAt(scene, mat, in);
+  if (h.bsdf.clearcoat > 0.0f) {
+    // The coat's normal: its own map on the interpolated normal (not the base's map).
+    glm::vec3 nc = applyNormalMap(scene, mat.clearcoatNormalTexture, mat.clearcoatNormalScale, in,
+                                  glm::mat3(m), interpolated);
+    if (glm::dot(nc, h.geometricNormal) < 0.0f) nc = -nc;
+    if (nc != ns) h.bsdf.coatNormal = safeNormalize(Frame::fromZ(ns).toLocal(nc), {0, 0, 1});
+  }
   // A volume's interface: entering from the front, leaving from the back.
   if (!h.bsdf.thinWalled && !h.frontFace && h.bsdf.eta > 0.0f) h.bsdf.eta = 1.0f / h.bsdf.eta;
   h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);

@@ -914,11 +914,24 @@ TEST(GltfLoader, SheenAndClearcoatOutOfRangeAreErrors) {
   }
 }
 
-TEST(GltfLoader, ClearcoatNormalTextureIsAWarning) {
-  const Scene scene =
-      loadGltf(writeGltf("coat_normal.gltf", materialExtensionsGltf(R"({"KHR_materials_clearcoat":{
-"clearcoatFactor":1,"clearcoatNormalTexture":{"index":0}}})")));
-  EXPECT_TRUE(anyContains(scene.warnings, "material 'm'", "clearcoatNormalTexture is not used"));
+TEST(GltfLoader, ClearcoatNormalTextureAndItsScaleAreRead) {
+  // A flat normal map (128, 128, 255) for the coat to name; the triangle file has none.
+  const fs::path dir = testDir();
+  Image8 image(1, 1, 4);
+  const uint8_t flat[4] = {128, 128, 255, 255};
+  std::memcpy(image.data.data(), flat, 4);
+  writeImage((dir / "flat_normal.png").string(), image);
+  std::string json = materialExtensionsGltf(R"({"KHR_materials_clearcoat":{
+"clearcoatFactor":1,"clearcoatNormalTexture":{"index":0,"scale":0.5}}})");
+  json = replaced(json, R"("buffers":)",
+                  R"("textures":[{"source":0}],"images":[{"uri":"flat_normal.png"}],"buffers":)");
+  writeFile(dir / "coat_normal.gltf", json);
+  const Scene scene = loadGltf((dir / "coat_normal.gltf").string());
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.clearcoatNormalTexture.texture, 0);
+  EXPECT_FLOAT_EQ(m.clearcoatNormalScale, 0.5f);
+  EXPECT_FALSE(anyContains(scene.warnings, "clearcoatNormalTexture"));
 }
 
 TEST(GltfLoader, UnlitIsRead) {

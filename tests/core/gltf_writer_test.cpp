@@ -79,6 +79,8 @@ Material texturedMaterial() {
   m.clearcoatRoughnessFactor = 0.125f;
   m.clearcoatTexture = {0, 0, {}};
   m.clearcoatRoughnessTexture = {0, 0, {{0.0f, 0.5f}, 0.0f, {1.0f, 1.0f}}};
+  m.clearcoatNormalTexture = {0, 1, {}};
+  m.clearcoatNormalScale = 0.25f;
   return m;
 }
 
@@ -179,17 +181,20 @@ void expectSameMaterial(const Material& a, const Material& b) {
   EXPECT_EQ(a.sheenRoughnessFactor, b.sheenRoughnessFactor);
   EXPECT_EQ(a.clearcoatFactor, b.clearcoatFactor);
   EXPECT_EQ(a.clearcoatRoughnessFactor, b.clearcoatRoughnessFactor);
+  EXPECT_EQ(a.clearcoatNormalScale, b.clearcoatNormalScale);
   const TextureRef* ra[] = {
       &a.baseColorTexture,      &a.metallicRoughnessTexture, &a.normalTexture,
       &a.occlusionTexture,      &a.emissiveTexture,          &a.specularTexture,
       &a.specularColorTexture,  &a.transmissionTexture,      &a.sheenColorTexture,
-      &a.sheenRoughnessTexture, &a.clearcoatTexture,         &a.clearcoatRoughnessTexture};
+      &a.sheenRoughnessTexture, &a.clearcoatTexture,         &a.clearcoatRoughnessTexture,
+      &a.clearcoatNormalTexture};
   const TextureRef* rb[] = {
       &b.baseColorTexture,      &b.metallicRoughnessTexture, &b.normalTexture,
       &b.occlusionTexture,      &b.emissiveTexture,          &b.specularTexture,
       &b.specularColorTexture,  &b.transmissionTexture,      &b.sheenColorTexture,
-      &b.sheenRoughnessTexture, &b.clearcoatTexture,         &b.clearcoatRoughnessTexture};
-  for (int i = 0; i < 12; ++i) {
+      &b.sheenRoughnessTexture, &b.clearcoatTexture,         &b.clearcoatRoughnessTexture,
+      &b.clearcoatNormalTexture};
+  for (int i = 0; i < 13; ++i) {
     EXPECT_EQ(ra[i]->texture, rb[i]->texture) << i;
     EXPECT_EQ(ra[i]->texCoord, rb[i]->texCoord) << i;
     EXPECT_EQ(ra[i]->transform.offset, rb[i]->transform.offset) << i;

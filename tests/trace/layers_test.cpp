@@ -31,17 +31,26 @@ struct LayerCase {
   float coat, coatRoughness;
   float sheen, sheenRoughness;
   float roughness = 0.7f, transmission = 0.0f, metallic = 0.0f;
+  float coatTilt = 0.0f;  // degrees between the coat's normal and the base's
 };
+
+// A unit normal 'degrees' away from +z, towards azimuth 30 degrees (off the plane of
+// incidence, so a tilt breaks the lobes' mirror symmetry).
+glm::vec3 tilted(float degrees) {
+  const float t = glm::radians(degrees), phi = glm::radians(30.0f);
+  return {std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)};
+}
 void PrintTo(const LayerCase& c, std::ostream* os) {
   *os << "theta " << c.theta << " coat " << c.coat << "/" << c.coatRoughness << " sheen " << c.sheen
       << "/" << c.sheenRoughness << " roughness " << c.roughness << " transmission "
-      << c.transmission << " metallic " << c.metallic;
+      << c.transmission << " metallic " << c.metallic << " coat tilt " << c.coatTilt;
 }
 
 BsdfParams layered(const LayerCase& c, glm::vec3 base = glm::vec3(0.7f, 0.5f, 0.3f)) {
   BsdfParams p{base, c.metallic, c.roughness};
   p.clearcoat = c.coat;
   p.clearcoatRoughness = c.coatRoughness;
+  p.coatNormal = tilted(c.coatTilt);
   p.sheenColor = glm::vec3(c.sheen, 0.8f * c.sheen, 0.6f * c.sheen);
   p.sheenRoughness = c.sheenRoughness;
   p.transmission = c.transmission;
@@ -85,13 +94,16 @@ TEST_P(LayerChiSquare, SampledDirectionsFollowPdfOverTheSphere) {
 
 // Lobes the 20 x 40 grid resolves: a coat over a rough dielectric and over a metal, sheen
 // alone (and at roughness 0, where the albedo normalisation acts), all three over glass.
-INSTANTIATE_TEST_SUITE_P(CoatSheenBase, LayerChiSquare,
-                         testing::Values(LayerCase{30.0f, 1.0f, 0.4f, 0.0f, 0.0f},
-                                         LayerCase{70.0f, 0.6f, 0.5f, 0.0f, 0.0f, 0.5f, 0.0f, 1.0f},
-                                         LayerCase{45.0f, 0.0f, 0.0f, 0.9f, 0.5f},
-                                         LayerCase{80.0f, 0.0f, 0.0f, 1.0f, 0.0f},
-                                         LayerCase{40.0f, 1.0f, 0.5f, 0.8f, 0.6f, 0.5f, 1.0f,
-                                                   0.0f}));
+INSTANTIATE_TEST_SUITE_P(
+    CoatSheenBase, LayerChiSquare,
+    testing::Values(LayerCase{30.0f, 1.0f, 0.4f, 0.0f, 0.0f},
+                    LayerCase{70.0f, 0.6f, 0.5f, 0.0f, 0.0f, 0.5f, 0.0f, 1.0f},
+                    LayerCase{45.0f, 0.0f, 0.0f, 0.9f, 0.5f},
+                    LayerCase{80.0f, 0.0f, 0.0f, 1.0f, 0.0f},
+                    LayerCase{40.0f, 1.0f, 0.5f, 0.8f, 0.6f, 0.5f, 1.0f, 0.0f},
+                    // the coat about a normal of its own (its normal map)
+                    LayerCase{30.0f, 1.0f, 0.3f, 0.0f, 0.0f, 0.7f, 0.0f, 0.0f, 25.0f},
+                    LayerCase{60.0f, 0.8f, 0.4f, 0.5f, 0.5f, 0.5f, 0.0f, 1.0f, 40.0f}));
 
 double tableAlbedo(double cosTheta, double sheenRoughness) {
   return sheenAlbedo(float(cosTheta), float(sheenRoughness));
@@ -109,11 +121,15 @@ TEST(Layers, ValueMatchesTheIndependentReference) {
     m.sheenRoughness = s.next();
     m.coat = s.next() < 0.3 ? 0.0 : s.next();
     m.coatRoughness = 0.1 + 0.9 * s.next();
+    // Half the coats about a normal of their own, up to 40 degrees off the base's.
+    const float tilt = s.next() < 0.5f ? 0.0f : 40.0f * s.next();
+    m.coatNormal = glm::dvec3(tilted(tilt));
     BsdfParams p{glm::vec3(m.base.baseColor), float(m.base.metallic), float(m.base.roughness)};
     p.sheenColor = glm::vec3(m.sheenColor);
     p.sheenRoughness = float(m.sheenRoughness);
     p.clearcoat = float(m.coat);
     p.clearcoatRoughness = float(m.coatRoughness);
+    p.coatNormal = tilted(tilt);
     const glm::vec3 wo = sampleCosineHemisphere(s.next2());
     const glm::vec3 wi = sampleCosineHemisphere(s.next2());
     const glm::dvec3 want = test::refLayered(m, tableAlbedo, glm::dvec3(wo), glm::dvec3(wi));
@@ -129,7 +145,8 @@ TEST(Layers, Reciprocal) {
   // float rounding, the half-vector computed from either side.
   Sampler s = testSampler(5);
   for (int i = 0; i < 5000; ++i) {
-    const LayerCase c{0.0f, s.next(), s.next(), s.next(), s.next(), s.next(), 0.0f, s.next()};
+    const LayerCase c{0.0f,     s.next(), s.next(), s.next(),        s.next(),
+                      s.next(), 0.0f,     s.next(), 40.0f * s.next()};
     const BsdfParams p = layered(c, glm::vec3(s.next(), s.next(), s.next()));
     const glm::vec3 a = sampleCosineHemisphere(s.next2()), b = sampleCosineHemisphere(s.next2());
     const glm::vec3 ab = evalBsdf(p, a, b), ba = evalBsdf(p, b, a);

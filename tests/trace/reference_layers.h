@@ -47,6 +47,7 @@ struct RefLayers {
   glm::dvec3 sheenColor{0.0};
   double sheenRoughness = 0.0;
   double coat = 0.0, coatRoughness = 0.0;
+  glm::dvec3 coatNormal{0.0, 0.0, 1.0};  // the coat's own normal (KHR_materials_clearcoat's map)
 };
 
 // coat + A_c (sheen + A_s base) for reflection (both directions above the surface).
@@ -57,10 +58,16 @@ glm::dvec3 refLayered(const RefLayers& m, const Albedo& sheenAlbedo, const glm::
   const glm::dvec3 h = glm::normalize(wo + wi);
   const double fc = refSchlick(glm::dvec3(0.04), glm::dot(wo, h)).x;
   const double ac = refAlpha(m.coatRoughness);
-  const double coat = m.coat * fc * refGgxD(h.z, ac) * refSmithG1(wo.z, ac) * refSmithG1(wi.z, ac) /
-                      (4.0 * wo.z * wi.z);
-  const double coatFilter = (1.0 - m.coat * refSchlick(glm::dvec3(0.04), wo.z).x) *
-                            (1.0 - m.coat * refSchlick(glm::dvec3(0.04), wi.z).x);
+  // The coat about its own normal: a direction behind it has no coat lobe, and the filter
+  // takes |cos| there (symmetric in wo and wi).
+  const glm::dvec3 nc = glm::normalize(m.coatNormal);
+  const double cwo = glm::dot(wo, nc), cwi = glm::dot(wi, nc);
+  double coat = 0.0;
+  if (cwo > 0.0 && cwi > 0.0)
+    coat = m.coat * fc * refGgxD(glm::dot(h, nc), ac) * refSmithG1(cwo, ac) * refSmithG1(cwi, ac) /
+           (4.0 * cwo * cwi);
+  const double coatFilter = (1.0 - m.coat * refSchlick(glm::dvec3(0.04), std::abs(cwo)).x) *
+                            (1.0 - m.coat * refSchlick(glm::dvec3(0.04), std::abs(cwi)).x);
   const double eV = sheenAlbedo(wo.z, m.sheenRoughness), eL = sheenAlbedo(wi.z, m.sheenRoughness);
   const double sMax = std::max({m.sheenColor.r, m.sheenColor.g, m.sheenColor.b});
   const double sheenFilter =

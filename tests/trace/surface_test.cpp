@@ -58,5 +58,47 @@ TEST(SurfaceEmissionAt, EqualsSurfaceAtInWhatItFills) {
   }
 }
 
+// KHR_materials_clearcoat's normal: the coat's own map on the interpolated normal, never
+// the base's map (glTF: "If clearcoatNormalTexture is not given, no normal mapping is
+// applied to the clear coat layer"), handed to the BSDF in the base's shading frame.
+TEST(SurfaceAt, TheCoatTakesItsOwnNormalMapNotTheBases) {
+  // A 1 x 1 normal map tilting the normal 30 degrees towards +x: (sin 30, 0, cos 30) as
+  // linear bytes (n + 1) / 2 * 255.
+  Scene s;
+  Texture t;
+  t.name = "tilt";
+  t.width = t.height = 1;
+  t.rgba = {191, 128, 238, 255};
+  s.textures.push_back(t);
+  const glm::vec3 decoded =
+      glm::normalize(glm::vec3(191.0f, 128.0f, 238.0f) / 255.0f * 2.0f - 1.0f);
+  struct Case {
+    bool baseMap, coatMap;
+    glm::vec3 shading, coat;  // the expected world normals
+  };
+  const glm::vec3 up(0, 0, 1);
+  for (const Case& c : {Case{false, false, up, up}, Case{true, false, decoded, up},
+                        Case{false, true, up, decoded}, Case{true, true, decoded, decoded}}) {
+    Scene scene = s;
+    Material m = diffuseMaterial(glm::vec3(0.5f));
+    m.clearcoatFactor = 1.0f;
+    if (c.baseMap) m.normalTexture.texture = 0;
+    if (c.coatMap) m.clearcoatNormalTexture.texture = 0;
+    scene.materials.push_back(m);
+    addSquare(scene, 1.0f, 0, glm::mat4(1.0f));
+    scene.meshes[0].tangents.assign(4, glm::vec4(1, 0, 0, 1));
+    const SurfaceHit h = surfaceAt(scene, 0, 0, 0.3f, 0.3f, glm::vec3(0, 0, -1));
+    SCOPED_TRACE(::testing::Message() << "base map " << c.baseMap << " coat map " << c.coatMap);
+    // 1e-5: float rounding of the decode, the normalisations and the frame.
+    EXPECT_LT(glm::length(h.shadingNormal - c.shading), 1e-5f);
+    const glm::vec3 coatWorld = Frame::fromZ(h.shadingNormal).toWorld(h.bsdf.coatNormal);
+    EXPECT_LT(glm::length(coatWorld - c.coat), 1e-5f);
+    // The same normal for both: exactly +z in the shading frame, the untilted coat.
+    if (c.baseMap == c.coatMap) {
+      EXPECT_EQ(h.bsdf.coatNormal, up);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace photovr
