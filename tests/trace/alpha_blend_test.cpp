@@ -60,6 +60,37 @@ TEST(AlphaBlend, EachLayerIsMetWithItsAlphaIndependently) {
   expectFraction(passed, 0.35, "shadow rays through both");
 }
 
+// Mean red radiance, and its standard error, of 'frames' path-traced frames of 8 x 8 pixels
+// x 16 spp, from 'from' looking at 'at' with a 20 degree field of view.
+struct ImageMean {
+  double mean = 0.0, se = 0.0;
+};
+ImageMean meanRadiance(const Scene& s, int maxBounces, glm::vec3 from, glm::vec3 at,
+                       uint32_t frames) {
+  const EmbreeScene embree(s);
+  const LightSet lights(s);
+  TraceSettings settings;
+  settings.samplesPerPixel = 16;
+  settings.maxBounces = maxBounces;
+  const TraceContext ctx{s, embree, lights, settings};
+  double sum = 0.0, sum2 = 0.0;
+  int n = 0;
+  for (uint32_t f = 0; f < frames; ++f) {
+    EyeCamera cam;
+    cam.pose = lookAt(from, at);
+    cam.fov = FovTangents::symmetric(glm::radians(20.0f), 1.0f);
+    cam.width = cam.height = 8;
+    cam.jitter = samplePosition(SamplerKind::Sobol, f);
+    for (const glm::vec3& c : renderPathTraced(ctx, cam, 0, f).color) {
+      sum += c.r;
+      sum2 += double(c.r) * c.r;
+      ++n;
+    }
+  }
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+}
+
 TEST(AlphaBlend, PathTracedImageIsTheAlphaWeightedMix) {
   // A BLEND layer of alpha 0.3 emitting 2 before an opaque wall emitting 1, both black:
   // every pixel's expected radiance is 0.3 x 2 + 0.7 x 1 = 1.3 (the mix alpha blending
@@ -67,40 +98,16 @@ TEST(AlphaBlend, PathTracedImageIsTheAlphaWeightedMix) {
   Scene s;
   addLayer(s, 0.0f, 0.3f, 2.0f);
   addLayer(s, -1.0f, 1.0f, 1.0f, 50.0f);
-  const EmbreeScene embree(s);
-  const LightSet lights(s);
-  TraceSettings settings;
-  settings.samplesPerPixel = 16;
-  settings.maxBounces = 0;
-  const TraceContext ctx{s, embree, lights, settings};
-  double sum = 0.0, sum2 = 0.0;
-  int n = 0;
-  for (uint32_t f = 0; f < 16; ++f) {
-    EyeCamera cam;
-    cam.pose = lookAt({0, 0, 3}, {0, 0, 0});
-    cam.fov = FovTangents::symmetric(glm::radians(20.0f), 1.0f);
-    cam.width = cam.height = 8;
-    cam.jitter = samplePosition(SamplerKind::Sobol, f);
-    const EyeImage img = renderPathTraced(ctx, cam, 0, f);
-    for (const glm::vec3& c : img.color) {
-      sum += c.r;
-      sum2 += double(c.r) * c.r;
-      ++n;
-    }
-  }
-  const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+  const ImageMean m = meanRadiance(s, 0, {0, 0, 3}, {0, 0, 0}, 16);
+  const double mean = m.mean, se = m.se;
   RecordProperty("mean", std::to_string(mean) + " se " + std::to_string(se));
   EXPECT_NEAR(mean, 1.3, 4 * se + 1e-4);
   EXPECT_GT(se, 0.0);  // the coverage is random, not a fixed pattern of all or nothing
 }
 
 // A white Lambert floor at z = 0 under a black, double-sided emitter at z = 1 of this
-// alpha mode and alpha; the mean radiance of the floor seen from z = 0.5, looking down,
-// over 'frames' frames of 8 x 8 pixels x 16 spp, and its standard error.
-struct FloorMean {
-  double mean = 0.0, se = 0.0;
-};
-FloorMean floorUnderEmitter(AlphaMode mode, float alpha, float emission, uint32_t frames = 8) {
+// alpha mode and alpha; the mean radiance of the floor seen from z = 0.5, looking down.
+ImageMean floorUnderEmitter(AlphaMode mode, float alpha, float emission, uint32_t frames = 8) {
   Scene s;
   Material floor;
   floor.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
@@ -122,28 +129,7 @@ FloorMean floorUnderEmitter(AlphaMode mode, float alpha, float emission, uint32_
     s.meshes.push_back(q);
     s.instances.push_back({m, glm::mat4(1.0f), glm::mat4(1.0f), m == 0 ? "floor" : "light"});
   }
-  const EmbreeScene embree(s);
-  const LightSet lights(s);
-  TraceSettings settings;
-  settings.samplesPerPixel = 16;
-  settings.maxBounces = 2;
-  const TraceContext ctx{s, embree, lights, settings};
-  double sum = 0.0, sum2 = 0.0;
-  int n = 0;
-  for (uint32_t f = 0; f < frames; ++f) {
-    EyeCamera cam;
-    cam.pose = lookAt({0, 0, 0.5f}, {0, 0, 0});
-    cam.fov = FovTangents::symmetric(glm::radians(20.0f), 1.0f);
-    cam.width = cam.height = 8;
-    cam.jitter = samplePosition(SamplerKind::Sobol, f);
-    for (const glm::vec3& c : renderPathTraced(ctx, cam, 0, f).color) {
-      sum += c.r;
-      sum2 += double(c.r) * c.r;
-      ++n;
-    }
-  }
-  const double mean = sum / n;
-  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+  return meanRadiance(s, 2, {0, 0, 0.5f}, {0, 0, 0}, frames);
 }
 
 TEST(AlphaBlend, LightSamplingSeesABlendEmitterAsOftenAsBsdfRaysDo) {
@@ -152,8 +138,8 @@ TEST(AlphaBlend, LightSamplingSeesABlendEmitterAsOftenAsBsdfRaysDo) {
   // the emission. NEE must count the emitter that much too; counted whole, the floor came
   // out twice as bright here (1.79 against 0.88: NEE + MIS weighed the full emission
   // against 0.4 of it).
-  const FloorMean blend = floorUnderEmitter(AlphaMode::Blend, 0.4f, 5.0f);
-  const FloorMean opaque = floorUnderEmitter(AlphaMode::Opaque, 1.0f, 2.0f);
+  const ImageMean blend = floorUnderEmitter(AlphaMode::Blend, 0.4f, 5.0f);
+  const ImageMean opaque = floorUnderEmitter(AlphaMode::Opaque, 1.0f, 2.0f);
   RecordProperty("blend", std::to_string(blend.mean) + " se " + std::to_string(blend.se));
   RecordProperty("opaque", std::to_string(opaque.mean) + " se " + std::to_string(opaque.se));
   // Independent estimates of one mean: 4 combined standard errors.
@@ -164,7 +150,7 @@ TEST(AlphaBlend, LightSamplingSeesABlendEmitterAsOftenAsBsdfRaysDo) {
 TEST(AlphaBlend, AMaskEmitterThatIsAllHoleLightsNothing) {
   // alpha 0.3 under MASK's cutoff 0.5: the emitter is a hole everywhere, no ray meets it,
   // and light sampling may not find light there either.
-  const FloorMean mask = floorUnderEmitter(AlphaMode::Mask, 0.3f, 5.0f, 2);
+  const ImageMean mask = floorUnderEmitter(AlphaMode::Mask, 0.3f, 5.0f, 2);
   EXPECT_EQ(mask.mean, 0.0);
 }
 
