@@ -210,6 +210,9 @@ namespace {
 // total internal reflection at the macro-surface rough microfacets still refract). f cos /
 // pdf of a half is then F(wo.h) / P_R or (1 - F(wo.h)) / (1 - P_R) times bounded factors.
 constexpr float kMinGlassHalfProbability = 0.05f;
+// Relative indices within this of 1 are index-matched (prepareGlass): 1e-4 keeps Walter's
+// half-vector, |wo + eta wi| >= ~|eta - 1|, well above float rounding of unit vectors.
+constexpr float kIndexMatched = 1e-4f;
 
 // The glass lobe's value and density at wi, the density given the lobe was chosen.
 struct LobeEval {
@@ -315,7 +318,12 @@ void prepareGlass(const BsdfParams& p, float metallic, BsdfVertex& v, float& brd
   v.brdfWeight = 1.0f - v.glass;
   brdfMetallic = v.brdfWeight > 0.0f ? std::min(1.0f, metallic / v.brdfWeight) : 0.0f;
   v.eta = isFinite(p.eta) ? std::clamp(p.eta, 1e-3f, 1e3f) : 1.5f;
-  v.thinWalled = p.thinWalled;
+  // An index-matched interface (relative index 1: ior 1, or a volume inside a medium of
+  // its own index) does not bend light, and Walter's refraction half-vector wo + eta wi
+  // vanishes for the one direction it sends light in (every refracted path was lost). It
+  // is sampled as a thin wall, whose transmission continues straight for a smooth surface;
+  // a rough one still spreads that lobe, where a true index match would not.
+  v.thinWalled = p.thinWalled || std::abs(v.eta - 1.0f) < kIndexMatched;
   const float fr = fresnelDielectric(v.wo.z, v.eta);
   v.reflectProbability = std::clamp(fr, kMinGlassHalfProbability, 1.0f - kMinGlassHalfProbability);
 }

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "trace/embree_scene.h"
+#include "trace/media.h"
 #include "trace/path_tracer.h"
 #include "trace/rng.h"
 #include "trace/stereo_reuse.h"
@@ -42,6 +43,7 @@ struct PathState {
   float bsdfPdf = 0.0f;
   float survival = 1.0f;  // Russian roulette's survival probability (1: no roulette)
   bool last = false;      // the path ends at what the bounce ray finds
+  MediumStack media;      // the volumes the path is inside (the bounce ray's medium)
   // Stereo reuse (trace/stereo_reuse.h): the left eye's path records its first bounce in
   // 'record'; a right eye's path that reuses 'reuse' stops after its first vertex.
   FirstBounce* record = nullptr;

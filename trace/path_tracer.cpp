@@ -40,6 +40,22 @@ bool seesThrough(const BsdfParams& b) {
          b.sheenColor == glm::vec3(0.0f);
 }
 
+// The medium a ray leaving the path's vertex along 'dir' travels through: through a
+// volume's surface, into the volume (front face) or out to what holds it (back face).
+uint32_t mediumAlong(const Scene& scene, const PathState& p, const glm::vec3& dir) {
+  const bool crosses = glm::dot(dir, p.hit.geometricNormal) < 0.0f;
+  if (!crosses || !volumeMaterial(scene, p.hit.instance)) return p.media.current();
+  return p.hit.frontFace ? p.hit.instance : p.media.outsideOf(p.hit.instance);
+}
+
+// Beer-Lambert over 'distance' in 'medium' (1 in air or a clear medium; 0 over an infinite
+// distance in an absorbing one).
+glm::vec3 transmittance(const Scene& scene, uint32_t medium, float distance) {
+  const glm::vec3 sigma = mediumAbsorption(scene, medium);
+  if (sigma == glm::vec3(0.0f)) return glm::vec3(1.0f);
+  return std::isfinite(distance) ? glm::exp(-sigma * distance) : glm::vec3(0.0f);
+}
+
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
 // lights with area (Veach 1997 sec. 9.2, power heuristic): the shadow ray and what it adds
 // unblocked, weighted by the throughput and lobe split as they are at this vertex: by the
@@ -69,7 +85,10 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   }
   shadow.ray = BatchRay::make(origin, shadowDir, 0.0f, tfar);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
-  const glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
+  glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
+  // A light inside the medium the vertex is in is seen through that medium.
+  const uint32_t medium = mediumAlong(ctx.scene, p, ls.direction);
+  if (medium != MediumStack::kNone) scale *= transmittance(ctx.scene, medium, ls.distance);
   if (splitsHere) {
     shadow.diffuse = p.beta * (f.diffuse * scale);  // beta is 1 at the start
     shadow.specular = p.beta * (f.specular * scale);
@@ -159,14 +178,15 @@ void recordSecondVertex(const TraceContext& ctx, PathState& p, const PathResult&
   p.before0 = result.diffuse + result.specular;
 }
 
-// Beer-Lambert along a segment inside a volume (KHR_materials_volume): a ray that reaches
-// the back face of a volume's mesh travelled through its medium. Media nested in media are
-// approximated by the innermost one.
-void absorbAlong(const Scene& scene, const TraceHit& th, const SurfaceHit& next, glm::vec3& beta) {
-  if (next.frontFace) return;
-  const Material& m = scene.materials[scene.meshes[scene.instances[th.instance].mesh].material];
-  if (m.thinWalled()) return;
-  const glm::vec3 sigma = m.absorption();
+// Beer-Lambert along the bounce segment (KHR_materials_volume), in the medium the path
+// is in. A path with no medium that reaches a volume's back face started inside it (a
+// camera in the glass): that volume's medium, as before nested media were tracked.
+void absorbAlong(const Scene& scene, const PathState& p, const TraceHit& th, const SurfaceHit& next,
+                 glm::vec3& beta) {
+  uint32_t medium = p.media.current();
+  if (medium == MediumStack::kNone && !next.frontFace) medium = th.instance;
+  if (medium == MediumStack::kNone) return;
+  const glm::vec3 sigma = mediumAbsorption(scene, medium);
   if (sigma != glm::vec3(0.0f)) beta *= glm::exp(-sigma * th.t);
 }
 
@@ -240,6 +260,13 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
     p.survival = std::min(1.0f, std::max(p.beta.r, std::max(p.beta.g, p.beta.b)));
     p.last = !(u.roulette < p.survival);
   }
+  // Through a volume's surface the path enters or leaves its medium.
+  if (glm::dot(wi, p.hit.geometricNormal) < 0.0f && volumeMaterial(ctx.scene, p.hit.instance)) {
+    if (p.hit.frontFace)
+      p.media.enter(p.hit.instance);
+    else
+      p.media.leave(p.hit.instance);
+  }
   p.wi = wi;
   p.bsdfPdf = bs.pdf;
   bounce = BatchRay::make(offsetRayOrigin(p.hit, wi), wi, 0.0f, kInfinity);
@@ -262,7 +289,12 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
     next = p.last ? surfaceEmissionAt(ctx.scene, ref, geometry, p.wi)
                   : surfaceAt(ctx.scene, ref, geometry, p.wi);
   }
-  if (th.hit) absorbAlong(ctx.scene, th, next, p.beta);
+  if (th.hit) {
+    absorbAlong(ctx.scene, p, th, next, p.beta);
+    // Inside another medium an interface bends light by the two media's ratio.
+    if (p.media.size > 0 && next.bsdf.eta > 0.0f && volumeMaterial(ctx.scene, th.instance))
+      next.bsdf.eta = relativeEta(ctx.scene, p.media, th.instance, next.frontFace);
+  }
   addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
            p.share);
   if (p.depth == 0 && p.record) recordSecondVertex(ctx, p, result, th, next);
