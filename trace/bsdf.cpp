@@ -434,7 +434,7 @@ struct LayerEval {
 
 // wi in the coat's frame.
 glm::vec3 toCoat(const BsdfVertex& v, const glm::vec3& wi) {
-  return v.coatTilted ? v.coatFrame.toLocal(wi) : wi;
+  return v.coatTilted ? Frame::fromZ(v.coatNormal).toLocal(wi) : wi;
 }
 
 LayerEval evalLayers(const BsdfVertex& v, const glm::vec3& wi) {
@@ -479,8 +479,8 @@ void prepareLayers(const BsdfParams& p, BsdfVertex& v) {
   const glm::vec3 n = p.coatNormal;
   if (v.coat > 0.0f && n != glm::vec3(0.0f, 0.0f, 1.0f) && isFinite(n) && n.z > 0.0f) {
     v.coatTilted = true;
-    v.coatFrame = Frame::fromZ(glm::normalize(n));
-    v.coatWo = v.coatFrame.toLocal(v.wo);
+    v.coatNormal = glm::normalize(n);
+    v.coatWo = Frame::fromZ(v.coatNormal).toLocal(v.wo);
   }
   v.sheenColor = glm::clamp(isFinite(p.sheenColor) ? p.sheenColor : glm::vec3(0.0f), 0.0f, 1.0f);
   v.sheenMax = std::max({v.sheenColor.r, v.sheenColor.g, v.sheenColor.b});
@@ -538,7 +538,7 @@ BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
       const glm::vec3 coatWi = 2.0f * glm::dot(v.coatWo, h) * h - v.coatWo;
       // Below the coat's own horizon the coat has no density (evalLayers): no sample.
       if (v.coatTilted && !(coatWi.z > 0.0f)) return {};
-      s.wi = v.coatTilted ? v.coatFrame.toWorld(coatWi) : coatWi;
+      s.wi = v.coatTilted ? Frame::fromZ(v.coatNormal).toWorld(coatWi) : coatWi;
     } else {
       s.wi = sampleUniformHemisphere(u);
     }

@@ -265,10 +265,12 @@ struct BsdfVertex {
   float coat = 0.0f;  // c
   float coatAlpha = kMinAlpha;
   float coatG1OverCosWo = 0.0f;
-  float coatFresnelWo = 0.0f;          // c F_c(n_c.v)
-  bool coatTilted = false;             // coatNormal is not +z: the coat has a frame of its own ...
-  Frame coatFrame;                     // ... its z the coat normal, in the shading frame
-  glm::vec3 coatWo{0.0f, 0.0f, 1.0f};  // wo in the coat's frame
+  float coatFresnelWo = 0.0f;  // c F_c(n_c.v)
+  // A tilted coat (BsdfParams::coatNormal not +z): its normal, z of the coat's frame
+  // (Frame::fromZ, built where needed), and wo in that frame.
+  bool coatTilted = false;
+  glm::vec3 coatNormal{0.0f, 0.0f, 1.0f};
+  glm::vec3 coatWo{0.0f, 0.0f, 1.0f};
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f;
   float sheenAlpha = 1.0f;

@@ -283,12 +283,12 @@ void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked) {
 
 bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, const TraceHit& th,
                  const HitGeometry& geometry) {
-  SurfaceHit next;
-  if (th.hit) {
-    const HitRef ref{th.instance, th.triangle, th.b1, th.b2};
-    next = p.last ? surfaceEmissionAt(ctx.scene, ref, geometry, p.wi)
-                  : surfaceAt(ctx.scene, ref, geometry, p.wi);
-  }
+  // Initialised, not assigned: the hit is built in place (a SurfaceHit is ~150 bytes, and
+  // a default construction plus a copy of it per bounce showed in the profile).
+  const HitRef ref{th.instance, th.triangle, th.b1, th.b2};
+  SurfaceHit next = !th.hit  ? SurfaceHit{}
+                    : p.last ? surfaceEmissionAt(ctx.scene, ref, geometry, p.wi)
+                             : surfaceAt(ctx.scene, ref, geometry, p.wi);
   if (th.hit) {
     absorbAlong(ctx.scene, p, th, next, p.beta);
     // Inside another medium an interface bends light by the two media's ratio.
