@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "trace/bsdf.h"
 #include "trace/path_stages.h"
@@ -134,15 +135,17 @@ void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& sha
 
 // The right eye's bounce term from the left path's first bounce (trace/stereo_reuse.h
 // derives it): no ray; the left's direction and the radiance it brought, re-weighted by
-// this vertex's BSDF, and the emission it found MIS-weighted against this vertex's NEE.
+// this vertex's BSDF, and the emission it found MIS-weighted against this vertex's NEE;
+// only if the direction is the reused term's ('split'), else the right sample's own.
 void reuseBounce(const TraceContext& ctx, const PathState& p, const Frame& frame,
-                 const BsdfVertex& bsdf, PathResult& result) {
+                 const BsdfVertex& bsdf, const ReuseSplit& split, PathResult& result) {
   const FirstBounce& b = *p.reuse;
   if (!b.sampled) return;  // the left path's bounce term was 0 (no valid sample, or rejected)
   const glm::vec3& wi = b.dir;
   if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return;
   const glm::vec3 wiL = frame.toLocal(wi);
   const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
+  if (!split.reused(wi, e.pdf)) return;
   glm::vec3 incoming = b.beyond;
   if (b.emitted != glm::vec3(0.0f)) {
     const float lightPdf =
@@ -204,6 +207,8 @@ PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCoun
     *record = FirstBounce{};
     record->position = hit.position;
     record->normal = hit.shadingNormal;
+    record->geometricNormal = hit.geometricNormal;
+    record->wo = wo;
     record->instance = hit.instance;
     record->sampler = p.sampler;
   }
@@ -234,14 +239,24 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   VertexRays rays;
   rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, u, shadow);
   result.rays += rays.shadow;
+  std::optional<ReuseSplit> split;
   if (p.reuse) {
-    reuseBounce(ctx, p, frame, bsdf, result);
-    return rays;
+    split.emplace(*p.reuse, p.hit, bsdf);
+    reuseBounce(ctx, p, frame, bsdf, *split, result);
+    if (split->whole()) return rays;
+  }
+  if (p.depth == 0 && p.record) {
+    p.record->woAbove = bsdf.wo.z > 0.0f;
+    p.record->specularProbability = bsdf.specularProbability;
   }
   const BsdfSample bs = sampleBsdf(bsdf, u.bsdf);
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
   if (!sameSide(wi, p.hit, bs.wi)) return rays;
+  // A reused right sample traces its own bounce only where the reused term does not hold
+  // the direction (trace/stereo_reuse.h).
+  if (split && split->reused(wi, bs.pdf)) return rays;
+  p.reuse = nullptr;
   if (splitsHere) p.share = diffuseShare(bs);
   if (p.depth == 0 && p.record) {
     p.record->sampled = true;

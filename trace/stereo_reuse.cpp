@@ -25,6 +25,32 @@ void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
 
 namespace {
 
+// Whether the left vertex picks each BRDF lobe at least 1 / kReusePdfRatio as often as the
+// right one.
+bool lobesAlike(float left, float right) {
+  return right <= kReusePdfRatio * left && 1.0f - right <= kReusePdfRatio * (1.0f - left);
+}
+
+}  // namespace
+
+ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex)
+    : b_(b) {
+  whole_ = b.woAbove && b.normal == right.shadingNormal &&
+           b.geometricNormal == right.geometricNormal &&
+           lobesAlike(b.specularProbability, rightVertex.specularProbability);
+  if (whole_) return;
+  frame_ = Frame::fromZ(b.normal);
+  vertex_ = prepareBsdf(right.bsdf, frame_.toLocal(b.wo));
+  vertex_.specularProbability = b.specularProbability;
+}
+
+float ReuseSplit::leftPdf(const glm::vec3& w) const {
+  if (!leftCovers(b_, w)) return 0.0f;
+  return evalBsdfAndPdf(vertex_, frame_.toLocal(w)).pdf;
+}
+
+namespace {
+
 // The lobe test of kReuseMinRoughness: alpha against the angle between the views.
 bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3& toRight) {
   if (hit.bsdf.roughness < kReuseMinRoughness) return false;

@@ -10,12 +10,30 @@
 //
 //   f(x1R, woR, w) |cos th1R| (w_bsdf(w) Le(x2) + L_beyond(x2)) / pdf(w | x1L, woL),
 //
-// an importance-sampled estimate of the right vertex's reflection integral wherever the left
-// pdf covers the right lobe (the roughness test below). Le(x2), the emission the left ray
-// found, is weighted against the right sample's own NEE with the power heuristic of the right
-// vertex's own pdfs, so the two weights sum to one for every direction (unbiased MIS; Veach
-// 1997 sec. 9.2). The right sample's NEE draws the left sample's numbers from its own x1R,
-// with its own shadow ray, so direct light is exact and its noise matches the left eye's.
+// an importance-sampled estimate of the right vertex's reflection integral over the
+// directions the left pdf can draw, S_L (leftCovers). It is used on a region A of the
+// directions only; the rest, B, is the right sample's own: it draws w' ~ pdf_R(w' | x1R,
+// woR) with the left's BSDF numbers and, only if w' lies in B, traces its own path along it:
+//
+//   E[f |cos| L(w) / pdf_L(w) 1(w in A)] + E[f |cos| L(w') / pdf_R(w') 1(w' in B)]
+//     = the integral over A + the integral over B = the whole integral,
+//
+// for any split with A inside S_L (a shift mapping's fallback for what it cannot map well).
+// A is where pdf_R <= kReusePdfRatio g, g being the left pdf as the right vertex can
+// estimate it (ReuseSplit; 0 outside S_L): there the reused weight f / pdf_L stays within
+// ~kReusePdfRatio of the own sample's. B holds the wedge between two tilted hemispheres
+// (curved surfaces, normal maps: without it the right vertex lost ~theta^2 / 4 of a
+// Lambertian vertex's bounce light at normals theta apart), every direction where x1L's
+// view is below its shading horizon, and the right lobe's part where the left pdf is thin:
+// a glossy lobe on a curved surface, whose peak moves by twice the normals' angle; the
+// cosine lobe near the left's horizon, where cos_R / cos_L has no bound; a specular lobe
+// the left picks less often (a texture edge). Without B those were fireflies the right
+// eye's relMSE kept at 2048 frames (docs/MEASUREMENTS.md, "Stereo path reuse"). Le(x2), the
+// emission the left ray found, is weighted against the right sample's own NEE with the power
+// heuristic of the right vertex's own pdfs, so the two weights sum to one for every direction
+// (unbiased MIS; Veach 1997 sec. 9.2). The right sample's NEE draws the left sample's numbers from
+// its own x1R, with its own shadow ray, so direct light is exact and its noise matches the left
+// eye's.
 //
 // The approximation: the radiance arriving at x1R along w is taken as the radiance arriving
 // at x1L along w. The two points lie within kPartnerPixels footprints of each other, so only
@@ -36,6 +54,7 @@
 #include "core/camera.h"
 #include "trace/bsdf.h"
 #include "trace/rng.h"
+#include "trace/sampling.h"
 #include "trace/surface.h"
 
 namespace photovr {
@@ -44,12 +63,16 @@ namespace photovr {
 struct FirstBounce {
   static constexpr uint32_t kNone = ~0u;
   glm::vec3 position{0.0f}, normal{0.0f};  // x1L and its shading normal
+  glm::vec3 geometricNormal{0.0f};         // ... its geometric normal
+  glm::vec3 wo{0.0f};                      // ... and the left view (towards the left eye)
   uint32_t instance = kNone;               // x1L's instance; kNone: no path recorded
   bool sampled = false;  // the left path sampled a bounce at x1L (false: its indirect was 0)
   bool hit = false;      // ... whose ray found x2 (false: it left along 'dir')
-  glm::vec3 dir{0.0f};   // the bounce direction at x1L
-  float pdf = 0.0f;      // its solid-angle pdf
-  glm::vec3 x2{0.0f}, n2{0.0f};  // x2 and its geometric normal (the light pdf of Le(x2))
+  bool woAbove = false;  // x1L's view is above its shading horizon: it can sample at all
+  float specularProbability = 0.0f;  // x1L's chance of sampling its specular lobe (BRDF)
+  glm::vec3 dir{0.0f};               // the bounce direction at x1L
+  float pdf = 0.0f;                  // its solid-angle pdf
+  glm::vec3 x2{0.0f}, n2{0.0f};      // x2 and its geometric normal (the light pdf of Le(x2))
   uint32_t instance2 = 0, triangle2 = 0;
   glm::vec3 emitted{0.0f};  // Le(x2 -> x1L), or the environment along 'dir', unweighted
   glm::vec3 beyond{0.0f};   // radiance leaving x2 towards x1L without Le(x2), per unit throughput
@@ -75,6 +98,49 @@ struct StereoPaths {
     stamps[i] = generation;
     return &bounces[i];
   }
+};
+
+// Whether the left sample's bounce at x1L could have been 'w' (its pdf there is > 0): a
+// reflection above x1L's shading and geometric horizons, from a view above the shading one
+// (what sampleBsdf and the tracer's side test let through).
+inline bool leftCovers(const FirstBounce& b, const glm::vec3& w) {
+  return b.woAbove && glm::dot(w, b.normal) > 0.0f && glm::dot(w, b.geometricNormal) > 0.0f;
+}
+
+// The split of a right vertex's bounce directions between the reused left sample and its
+// own (the derivation at the top): a direction w is the reused term's if the right vertex's
+// own pdf there is at most kReusePdfRatio times g(w), the left pdf as the right vertex
+// estimates it (its own material prepared in x1L's frame, for x1L's view, with x1L's lobe
+// choice; 0 wherever leftCovers says the left pdf is 0), and the right sample's own
+// otherwise. Both terms test the same g, so the two regions split the directions exactly,
+// whatever g's error; g only decides how well the split keeps the reused term's weight
+// f / pdf_L within kReusePdfRatio of the own sample's.
+//
+// Where the two vertices share both normals and the left view is above its horizon, the
+// left support holds the right's, and where the left also picks each lobe at least
+// 1 / kReusePdfRatio as often as the right, the left pdf is within that ratio of the right's
+// but for the view change, which the roughness test bounds (the usual case on a flat
+// surface): there every direction is the reused term's ('whole'), and the right sample
+// draws nothing of its own. (Any split with the reused part inside the left's support is
+// unbiased; this choice only skips computing g where it would change next to nothing.)
+constexpr float kReusePdfRatio = 2.0f;
+
+class ReuseSplit {
+ public:
+  ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex);
+  // Every direction of the right vertex is the reused term's.
+  bool whole() const { return whole_; }
+  // Whether w, whose pdf at the right vertex is rightPdf, belongs to the reused term.
+  bool reused(const glm::vec3& w, float rightPdf) const {
+    return whole_ || rightPdf <= kReusePdfRatio * leftPdf(w);
+  }
+
+ private:
+  float leftPdf(const glm::vec3& w) const;
+  const FirstBounce& b_;
+  bool whole_ = false;
+  Frame frame_;
+  BsdfVertex vertex_;
 };
 
 // Primary hits whose shading normals are closer than acos(kPartnerNormalCos) ~ 25 degrees,
