@@ -22,7 +22,9 @@ RebuiltHit rebuildPrimaryHit(const Scene& scene, const VisibilityRecord& record,
     const float sum = b1 + b2;
     if (sum > 1.0f) b1 /= sum, b2 /= sum;
   }
-  r.surface = surfaceAt(scene, record.instance, record.triangle, b1, b2, direction);
+  // The triangle's world corners, once: its geometry comes from them too.
+  const HitRef ref{record.instance, record.triangle, b1, b2};
+  r.surface = surfaceAt(scene, ref, hitGeometry(tri, b1, b2), direction);
   r.t = glm::dot(r.surface.position - origin, direction);
   return r;
 }

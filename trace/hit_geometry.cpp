@@ -80,10 +80,11 @@ template <typename T>
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 
+// From the world-space corners.
 template <typename T>
-[[gnu::always_inline]] inline Result<T> geometryOf(const Corners<T>& c, const T& b1, const T& b2) {
-  const V3<T> p0 = toWorld(c, c.p0), e1 = minus(toWorld(c, c.p1), p0),
-              e2 = minus(toWorld(c, c.p2), p0);
+[[gnu::always_inline]] inline Result<T> geometryOf(const V3<T>& p0, const V3<T>& p1,
+                                                   const V3<T>& p2, const T& b1, const T& b2) {
+  const V3<T> e1 = minus(p1, p0), e2 = minus(p2, p0);
   // (p0 + b1 e1) + b2 e2, and the magnitudes of its terms, per component.
   const auto combine = [&](const T& a, const T& d1, const T& d2) {
     return (a + b1 * d1) + b2 * d2;
@@ -102,6 +103,11 @@ template <typename T>
   const T zero = T{} + 0.0f, one = T{} + 1.0f;
   r.ng = {select(ok, n.x / len, zero), select(ok, n.y / len, one), select(ok, n.z / len, zero)};
   return r;
+}
+
+template <typename T>
+[[gnu::always_inline]] inline Result<T> geometryOf(const Corners<T>& c, const T& b1, const T& b2) {
+  return geometryOf(toWorld(c, c.p0), toWorld(c, c.p1), toWorld(c, c.p2), b1, b2);
 }
 
 V3<float> v3(const glm::vec3& v) {
@@ -146,6 +152,10 @@ __attribute__((target_clones("avx2", "default"))) void geometryLanes(Lanes8* lan
 
 HitGeometry hitGeometry(const Scene& scene, const HitRef& hit) {
   return toHitGeometry(geometryOf(cornersOf(scene, hit), hit.b1, hit.b2));
+}
+
+HitGeometry hitGeometry(const WorldTriangle& tri, float b1, float b2) {
+  return toHitGeometry(geometryOf(v3(tri.p0), v3(tri.p1), v3(tri.p2), b1, b2));
 }
 
 void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<HitGeometry> out) {

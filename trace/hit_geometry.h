@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "core/visibility.h"
 
 namespace photovr {
 
@@ -29,6 +30,10 @@ struct HitGeometry {
 };
 
 HitGeometry hitGeometry(const Scene& scene, const HitRef& hit);
+// The same from the hit triangle's world-space corners, where the caller has them
+// (worldTriangle transforms the corners as hitGeometry does, bit for bit): the hybrid's
+// primary hits, whose triangle is intersected first.
+HitGeometry hitGeometry(const WorldTriangle& triangle, float b1, float b2);
 
 // hitGeometry for every hit: out[i] for hits[i]; out.size() == hits.size().
 void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<HitGeometry> out);

@@ -68,6 +68,8 @@ TEST(HitGeometry, BatchEqualsOneByOneAndTheGlmFormBitForBit) {
       SCOPED_TRACE(name);
       expectSameBits(batch[i], one, i);
       expectSameBits(one, glmGeometry(scene, hits[i]), i);
+      const HitRef& h = hits[i];
+      expectSameBits(hitGeometry(worldTriangle(scene, h.instance, h.triangle), h.b1, h.b2), one, i);
     }
   }
 }
