@@ -109,8 +109,11 @@ std::string eyeTracerLine(const RenderRequest& r, const FrameTimes& t, double n)
                 t.eyeTraceMs[1] / n);
   std::string s = line;
   if (t.eyeReusedPaths[1] > 0) {
-    std::snprintf(line, sizeof line, " (stereo reuse: %.1f %% of its paths from the left eye)",
-                  100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]));
+    std::snprintf(line, sizeof line,
+                  " (stereo reuse: %.1f %% of its paths from the left eye, %.1f %% of those "
+                  "with an own bounce)",
+                  100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]),
+                  100.0 * double(t.eyeOwnBounces[1]) / double(t.eyeReusedPaths[1]));
     s += line;
   }
   return s;

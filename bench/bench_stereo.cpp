@@ -47,8 +47,9 @@ struct Args {
 };
 
 struct EyeTimes {
-  std::array<double, 2> ms{};  // median tracer time per eye
-  double reusedShare = 0.0;    // right-eye paths that reused the left's
+  std::array<double, 2> ms{};   // median tracer time per eye
+  double reusedShare = 0.0;     // right-eye paths that reused the left's ...
+  double ownBounceShare = 0.0;  // ... and of those, the ones that traced an own bounce too
 };
 
 struct Row {
@@ -83,7 +84,7 @@ TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 
 // Hybrid: per-eye tracer times on and off, alternating frame by frame.
 void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
   std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][eye]
-  std::array<uint64_t, 2> paths{}, reused{};
+  std::array<uint64_t, 2> paths{}, reused{}, ownBounces{};
   for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of both
     for (int on = 0; on < 2; ++on) {
       r.setSettings(settingsWith(r, on == 1));
@@ -93,12 +94,14 @@ void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
       if (k < 0) continue;
       for (int e = 0; e < 2; ++e) ms[on][e].push_back(t.eyeTraceMs[e]);
       paths[on] += t.eyePaths[1], reused[on] += t.eyeReusedPaths[1];
+      ownBounces[on] += t.eyeOwnBounces[1];
     }
   for (int e = 0; e < 2; ++e) {
     row.hybridOff.ms[e] = median(ms[0][e]);
     row.hybridOn.ms[e] = median(ms[1][e]);
   }
   row.hybridOn.reusedShare = double(reused[1]) / double(std::max<uint64_t>(paths[1], 1));
+  row.hybridOn.ownBounceShare = double(ownBounces[1]) / double(std::max<uint64_t>(reused[1], 1));
 }
 
 // pt: both eyes traced as FramePipeline does, on and off alternating.
@@ -256,10 +259,11 @@ void print(const Row& r, std::ofstream& csv) {
   const auto ratio = [](const std::array<double, 2>& ms) { return ms[1] / ms[0]; };
   std::printf(
       "%-8s hybrid tracer ms L/R: off %6.1f/%6.1f, on %6.1f/%6.1f (right/left %.2f, "
-      "reused %.3f) | pt off %6.1f/%6.1f, on %6.1f/%6.1f (right/left %.2f, reused %.3f)\n",
+      "reused %.3f, %.3f of those with an own bounce) | pt off %6.1f/%6.1f, on %6.1f/%6.1f "
+      "(right/left %.2f, reused %.3f)\n",
       r.scene.c_str(), r.hybridOff.ms[0], r.hybridOff.ms[1], r.hybridOn.ms[0], r.hybridOn.ms[1],
-      ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.ptOffMs[0], r.ptOffMs[1], r.ptOn.ms[0],
-      r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
+      ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.hybridOn.ownBounceShare, r.ptOffMs[0],
+      r.ptOffMs[1], r.ptOn.ms[0], r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
   std::printf(
       "         equal time: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
       "%.4f/%.4f, on %.4f/%.4f (off/on %.2f/%.2f); trimmed off/on %.2f/%.2f\n",
@@ -272,11 +276,12 @@ void print(const Row& r, std::ofstream& csv) {
       r.pairs, r.correlationOff, r.correlationOn);
   csv << r.scene << ',' << r.hybridOff.ms[0] << ',' << r.hybridOff.ms[1] << ',' << r.hybridOn.ms[0]
       << ',' << r.hybridOn.ms[1] << ',' << ratio(r.hybridOn.ms) << ',' << r.hybridOn.reusedShare
-      << ',' << r.ptOffMs[0] << ',' << r.ptOffMs[1] << ',' << r.ptOn.ms[0] << ',' << r.ptOn.ms[1]
-      << ',' << ratio(r.ptOn.ms) << ',' << r.ptOn.reusedShare << ',' << r.framesOff << ','
-      << r.framesOn << ',' << r.relMseOff[0] << ',' << r.relMseOff[1] << ',' << r.relMseOn[0] << ','
-      << r.relMseOn[1] << ',' << r.trimmedOff[0] << ',' << r.trimmedOff[1] << ',' << r.trimmedOn[0]
-      << ',' << r.trimmedOn[1] << ',' << r.correlationOff << ',' << r.correlationOn << '\n';
+      << ',' << r.hybridOn.ownBounceShare << ',' << r.ptOffMs[0] << ',' << r.ptOffMs[1] << ','
+      << r.ptOn.ms[0] << ',' << r.ptOn.ms[1] << ',' << ratio(r.ptOn.ms) << ',' << r.ptOn.reusedShare
+      << ',' << r.framesOff << ',' << r.framesOn << ',' << r.relMseOff[0] << ',' << r.relMseOff[1]
+      << ',' << r.relMseOn[0] << ',' << r.relMseOn[1] << ',' << r.trimmedOff[0] << ','
+      << r.trimmedOff[1] << ',' << r.trimmedOn[0] << ',' << r.trimmedOn[1] << ','
+      << r.correlationOff << ',' << r.correlationOn << '\n';
 }
 
 const char* const kUsage =
@@ -305,7 +310,8 @@ int run(const Options& o) {
   std::filesystem::create_directories(a.out);
   std::ofstream csv(a.out + "/bench_stereo.csv");
   csv << "scene,hybrid_off_left_ms,hybrid_off_right_ms,hybrid_on_left_ms,hybrid_on_right_ms,"
-         "hybrid_right_over_left,hybrid_reused_share,pt_off_left_ms,pt_off_right_ms,"
+         "hybrid_right_over_left,hybrid_reused_share,hybrid_own_bounce_share,pt_off_left_ms,pt_off_"
+         "right_ms,"
          "pt_on_left_ms,pt_on_right_ms,pt_right_over_left,pt_reused_share,frames_off,frames_on,"
          "relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,trimmed_off_left,"
          "trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"

@@ -14,6 +14,7 @@ void FrameTimes::add(const FrameTimes& t) {
     eyeTraceMs[e] += t.eyeTraceMs[e];
     eyePaths[e] += t.eyePaths[e];
     eyeReusedPaths[e] += t.eyeReusedPaths[e];
+    eyeOwnBounces[e] += t.eyeOwnBounces[e];
   }
   animateMs += t.animateMs;
   denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
@@ -25,6 +26,7 @@ void FrameTimes::addEye(int eye, const EyeImage& image) {
   rejectedSamples += image.rejectedSamples;
   eyePaths[eye] += image.paths;
   eyeReusedPaths[eye] += image.reusedPaths;
+  eyeOwnBounces[eye] += image.reusedOwnBounces;
 }
 
 HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSettings& settings)

@@ -28,7 +28,8 @@ struct FrameTimes {
   double traceMs = 0.0;     // path continuation (pt: whole paths), both eyes
   std::array<double, 2> eyeTraceMs{};        // per eye: its rebuild and trace
   std::array<uint64_t, 2> eyePaths{};        // per eye: paths from primary hits ...
-  std::array<uint64_t, 2> eyeReusedPaths{};  // ... of which reused the left eye's
+  std::array<uint64_t, 2> eyeReusedPaths{};  // ... of which reused the left eye's ...
+  std::array<uint64_t, 2> eyeOwnBounces{};   // ... of which traced an own bounce too
   double refitMs = 0.0;                      // BVH top-level re-commit (only with 'refit' off)
   double animateMs = 0.0;      // posing an animated scene and updating GL, Embree and lights to it
   double denoiseMs = 0.0;      // FramePipeline's finish: denoiser or upload, wall

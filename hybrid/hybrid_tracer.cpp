@@ -31,7 +31,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   std::vector<RebuiltHit>& hits = buffers.hits;
   hits.resize(n);  // every element is written below: no second pass over ~95 MB
   std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0}, paths{0},
-      reused{0};
+      reused{0}, ownBounces{0};
   if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const auto t0 = Clock::now();
@@ -54,15 +54,15 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
         enableFlushToZero();
-        uint64_t tileRays = 0, tileRejected = 0, tileTraced = 0, tileSkyHits = 0, tilePaths = 0,
-                 tileReused = 0;
+        PathBatcher::Totals tile;
+        uint64_t tileTraced = 0, tileSkyHits = 0, tilePaths = 0, tileReused = 0;
         thread_local PathBatcher batcher;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
           const glm::vec3 dir = cam.pixelRay(x, y);
           if (!g.record(i).hit()) {               // background: the environment, untraced
             if (!ctx.settings.skips.skyPixels) {  // ... unless that skip is off
-              ++tileRays;
+              ++tile.rays;
               if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity).hit) ++tileSkyHits;
             }
             img.color[i] = ctx.lights.environmentRadiance(dir);
@@ -72,7 +72,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           img.normal[i] = hits[i].surface.shadingNormal;
           img.depth[i] = cam.depthAt(hits[i].t * glm::dot(dir, forward));
           if (spp == 0) continue;
-          if (batcher.full()) batcher.flush(ctx, img, tileRays, tileRejected);
+          if (batcher.full()) batcher.flush(ctx, img, tile);
           batcher.beginPixel(i);
           SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
                                   ctx.settings.sampler};
@@ -89,9 +89,10 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           tilePaths += spp;
           ++tileTraced;
         }
-        batcher.flush(ctx, img, tileRays, tileRejected);
-        rays += tileRays;
-        rejected += tileRejected;
+        batcher.flush(ctx, img, tile);
+        rays += tile.rays;
+        rejected += tile.rejected;
+        ownBounces += tile.ownBounces;
         traced += tileTraced;
         skyHits += tileSkyHits;
         paths += tilePaths;
@@ -100,6 +101,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   img.rays = rays;
   img.paths = paths;
   img.reusedPaths = reused;
+  img.reusedOwnBounces = ownBounces;
   img.rejectedSamples = rejected;
   if (stats) {
     stats->rebuildMs = std::chrono::duration<double, std::milli>(t1 - t0).count();

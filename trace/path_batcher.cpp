@@ -19,8 +19,7 @@ void PathBatcher::addMiss(const glm::vec3& environment) {
   ++pixels_.back().samples;
 }
 
-void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, uint64_t& rays,
-                        uint64_t& rejected) {
+void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) {
   results_.resize(starts_.size());
   continuePaths(ctx, starts_, results_, threadScratch());
   for (const Pixel& p : pixels_) {
@@ -36,8 +35,9 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, uint64_t& rays,
       addPath(e, start.hit, results_[size_t(s.start)]);
     }
     storePixel(img, p.index, e);
-    rays += e.rays;
-    rejected += e.rejected;
+    totals.rays += e.rays;
+    totals.rejected += e.rejected;
+    totals.ownBounces += e.ownBounces;
   }
   starts_.clear(), samples_.clear(), pixels_.clear();
 }

@@ -26,9 +26,14 @@ class PathBatcher {
   // A sample whose primary ray left the scene and saw 'environment'.
   void addMiss(const glm::vec3& environment);
   bool full() const { return starts_.size() >= kBatchPaths; }
+  // What flushed paths add to an image's counters.
+  struct Totals {
+    uint64_t rays = 0, rejected = 0;
+    uint64_t ownBounces = 0;  // reused right samples that traced an own bounce too
+  };
   // Continues every queued path and stores each queued pixel into 'image' (storePixel);
-  // adds the paths' rays and rejected samples to the totals. Empties the batch.
-  void flush(const TraceContext& ctx, EyeImage& image, uint64_t& rays, uint64_t& rejected);
+  // adds the paths' counters to 'totals'. Empties the batch.
+  void flush(const TraceContext& ctx, EyeImage& image, Totals& totals);
 
  private:
   struct Sample {

@@ -256,6 +256,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   // A reused right sample traces its own bounce only where the reused term does not hold
   // the direction (trace/stereo_reuse.h).
   if (split && split->reused(wi, bs.pdf)) return rays;
+  result.ownBounces += p.reuse != nullptr;
   p.reuse = nullptr;
   if (splitsHere) p.share = diffuseShare(bs);
   if (p.depth == 0 && p.record) {

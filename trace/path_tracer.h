@@ -52,8 +52,9 @@ struct PathResult {
   // The denoiser surface's guide when it is not the start (primary surface replacement):
   // its shading normal scaled by its instance + 1; 0 when the start is the denoiser surface.
   glm::vec3 guide{0.0f};
-  uint32_t rejected = 0;  // samples dropped because they were NaN/Inf
-  uint32_t rays = 0;      // bounce and shadow rays traced
+  uint32_t rejected = 0;    // samples dropped because they were NaN/Inf
+  uint32_t rays = 0;        // bounce and shadow rays traced
+  uint32_t ownBounces = 0;  // stereo reuse: 1 if a reused right sample traced its own bounce
 };
 
 // Radiance leaving 'hit' towards 'wo' (unit, pointing away from the surface), from every
@@ -75,10 +76,11 @@ struct EyeImage {
   // ... and the edge-stopping guide of pixels whose first path looked through a smooth
   // mirror or glass (PathResult::guide; 0 elsewhere: the G-buffer's guides hold there).
   std::vector<glm::vec3> guide;
-  uint64_t rays = 0;             // rays traced (primary, bounce, shadow)
-  uint64_t paths = 0;            // paths continued from a primary hit ...
-  uint64_t reusedPaths = 0;      // ... of which reused the left eye's (trace/stereo_reuse.h)
-  uint64_t rejectedSamples = 0;  // NaN/Inf samples caught and dropped
+  uint64_t rays = 0;              // rays traced (primary, bounce, shadow)
+  uint64_t paths = 0;             // paths continued from a primary hit ...
+  uint64_t reusedPaths = 0;       // ... of which reused the left eye's (trace/stereo_reuse.h)
+  uint64_t reusedOwnBounces = 0;  // ... of which traced an own bounce too (ReuseSplit)
+  uint64_t rejectedSamples = 0;   // NaN/Inf samples caught and dropped
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 

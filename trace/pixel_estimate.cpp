@@ -12,6 +12,7 @@ void addPath(PixelEstimate& e, const SurfaceHit& hit, const PathResult& r) {
   if (e.samples == 0) e.guide = r.guide;
   e.rays += r.rays;
   e.rejected += r.rejected;
+  e.ownBounces += r.ownBounces;
   ++e.samples;
 }
 

@@ -17,7 +17,7 @@ struct PixelEstimate {
   glm::vec3 guide{0.0f};                                // the first path's PathResult::guide
   uint32_t samples = 0;                                 // paths continued from a hit
   uint32_t misses = 0;                                  // primary rays that left the scene
-  uint64_t rays = 0, rejected = 0;
+  uint64_t rays = 0, rejected = 0, ownBounces = 0;
 };
 
 // Albedos are clamped to this before demodulating, and the same clamped value is stored,

@@ -19,7 +19,8 @@ constexpr int kTile = 16;  // 16 x 16 pixels: enough work per task, many tasks f
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 struct Counts {
-  uint64_t rays = 0, rejected = 0, paths = 0, reused = 0;
+  PathBatcher::Totals traced;  // rays (the primary ones too), rejected samples, own bounces
+  uint64_t paths = 0, reused = 0;
 };
 
 // Sample s of frame f sits at the sampler's position for index f * spp + s
@@ -49,12 +50,12 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
             {BatchRay::make(cam.pose.position, cam.rayDirection(p.x, p.y), 0.0f, kInfinity)});
       }
   ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall, true);
-  counts.rays += primary.size();
+  counts.traced.rays += primary.size();
   size_t j = 0;
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
       const size_t i = img.index(x, y);
-      if (batcher.full()) batcher.flush(ctx, img, counts.rays, counts.rejected);
+      if (batcher.full()) batcher.flush(ctx, img, counts.traced);
       batcher.beginPixel(i);
       bool first = true;
       for (uint32_t s = 0; s < spp; ++s, ++j) {
@@ -82,7 +83,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
             record, partner);
       }
     }
-  batcher.flush(ctx, img, counts.rays, counts.rejected);
+  batcher.flush(ctx, img, counts.traced);
 }
 
 }  // namespace
@@ -92,20 +93,22 @@ EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_
   EyeImage img = std::move(reuse);
   allocateEyeImage(img, cam.width, cam.height);
   if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
-  std::atomic<uint64_t> rays{0}, rejected{0}, paths{0}, reused{0};
+  std::atomic<uint64_t> rays{0}, rejected{0}, paths{0}, reused{0}, ownBounces{0};
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, kTile, 0, cam.width, kTile),
                     [&](const tbb::blocked_range2d<int>& r) {
                       enableFlushToZero();
                       Counts counts;
                       traceTile(ctx, cam, eye, frame, stereo, r, img, counts);
-                      rays += counts.rays;
-                      rejected += counts.rejected;
+                      rays += counts.traced.rays;
+                      rejected += counts.traced.rejected;
+                      ownBounces += counts.traced.ownBounces;
                       paths += counts.paths;
                       reused += counts.reused;
                     });
   img.rays = rays;
   img.paths = paths;
   img.reusedPaths = reused;
+  img.reusedOwnBounces = ownBounces;
   img.rejectedSamples = rejected;
   return img;
 }

@@ -66,6 +66,7 @@ TEST(StereoReuse, EyesAtOnePlaceGiveTheLeftImage) {
     eyes[1] = eyes[0];
     const auto img = stereoFrame(f.ctx, eyes, 3, true, paths, 0);
     ASSERT_GT(img[1].reusedPaths, 0u) << name;
+    EXPECT_EQ(img[1].reusedOwnBounces, 0u) << name;  // the same vertex: nothing to split
     size_t compared = 0;
     for (size_t i = 0; i < img[0].color.size(); ++i) {
       // 1e-4 relative + 1e-6: a handful of float roundings in the reconnection (the
@@ -162,6 +163,10 @@ Mean reusedAgainstOwn(const Material& material, float tiltDegrees, Mean& own) {
   continuePaths(ctx, owning, results, threadScratch());
   own = meanRadiance(results);
   continuePaths(ctx, reusing, results, threadScratch());
+  uint32_t ownBounces = 0;
+  for (const PathResult& r : results) ownBounces += r.ownBounces;
+  // Tilted, some reused samples trace the directions the left samples poorly themselves.
+  EXPECT_GT(ownBounces, 0u) << tiltDegrees << " degrees";
   return meanRadiance(results);
 }
 
