@@ -68,6 +68,25 @@ bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3
 
 }  // namespace
 
+namespace {
+
+// Left sample 'sample' of pixel (x, y) if it was recorded this frame and is the same surface
+// point as the right hit for the shift: same instance, normals within kPartnerNormalCos,
+// within 'maxDistance2' (squared) of it.
+const FirstBounce* partnerAt(const StereoPaths& left, int x, int y, uint32_t sample,
+                             const SurfaceHit& hit, float maxDistance2) {
+  if (x < 0 || y < 0 || x >= left.camera.width || y >= left.camera.height) return nullptr;
+  const size_t slot = (size_t(y) * size_t(left.camera.width) + size_t(x)) * left.stride + sample;
+  if (left.stamps[slot] != left.generation) return nullptr;  // no left path this frame
+  const FirstBounce& b = left.bounces[slot];
+  if (b.instance != hit.instance) return nullptr;  // another object
+  if (glm::dot(b.normal, hit.shadingNormal) < kPartnerNormalCos) return nullptr;
+  const glm::vec3 d = b.position - hit.position;
+  return glm::dot(d, d) <= maxDistance2 ? &b : nullptr;
+}
+
+}  // namespace
+
 const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, const glm::vec3& eye,
                                glm::vec2 offset2, uint32_t sample) {
   if (sample >= left.stride) return nullptr;
@@ -82,16 +101,25 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, c
   if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
         py < float(left.camera.height)))
     return nullptr;
-  const size_t pixel = size_t(int(py)) * size_t(left.camera.width) + size_t(int(px));
-  const size_t slot = pixel * left.stride + sample;
-  if (left.stamps[slot] != left.generation) return nullptr;  // no left path this frame
-  const FirstBounce& b = left.bounces[slot];
-  if (b.instance != hit.instance) return nullptr;  // another object
-  if (glm::dot(b.normal, hit.shadingNormal) < kPartnerNormalCos) return nullptr;
   const float footprint = left.pixelAngle * glm::length(offset);
-  const glm::vec3 d = b.position - hit.position;
-  if (glm::dot(d, d) > (kPartnerPixels * footprint) * (kPartnerPixels * footprint)) return nullptr;
-  return &b;
+  const float maxDistance2 = (kPartnerPixels * footprint) * (kPartnerPixels * footprint);
+  const int x = int(px), y = int(py);
+  if (const FirstBounce* b = partnerAt(left, x, y, sample, hit, maxDistance2)) return b;
+  // Where that sample is another surface (an edge, a thin object), the nearest of its
+  // neighbours' samples that is this one (still within kPartnerPixels footprints), in a
+  // fixed order, so that the choice too stays from frame to frame.
+  const FirstBounce* best = nullptr;
+  float bestDistance2 = maxDistance2;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      const FirstBounce* b = partnerAt(left, x + dx, y + dy, sample, hit, bestDistance2);
+      if (!b) continue;
+      const glm::vec3 d = b->position - hit.position;
+      bestDistance2 = glm::dot(d, d);
+      best = b;
+    }
+  return best;
 }
 
 }  // namespace photovr
