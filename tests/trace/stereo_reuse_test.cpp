@@ -109,6 +109,56 @@ TEST(StereoReuse, RightEyeConvergesToItsOwnPathsImage) {
   }
 }
 
+// A right hit 4 m in front of the left eye, on the ray of left pixel (10, 8) at the
+// sample offset (0.25, 0.25), and the left eye's slots for that frame.
+struct PartnerSetup {
+  StereoRig rig;
+  EyeCamera left, right;
+  StereoPaths paths;
+  SurfaceHit hit;
+  static constexpr glm::vec2 kOffset{0.25f, 0.25f};
+  PartnerSetup() {
+    left = rig.eye(Eye::Left, 32, 24);
+    right = rig.eye(Eye::Right, 32, 24);
+    paths.reset(left, 1);
+    const glm::vec3 dir = glm::normalize(left.rayDirection(10.75f, 8.75f));
+    hit.position = left.pose.position + 4.0f * dir;
+    hit.shadingNormal = hit.geometricNormal = -dir;
+    hit.instance = 3;
+    hit.bsdf.roughness = 1.0f;
+  }
+  // Records pixel (x, y)'s sample as the given instance at the hit, 'shift' away from it.
+  FirstBounce* record(int x, int y, uint32_t instance, const glm::vec3& shift = glm::vec3(0.0f)) {
+    FirstBounce* b = paths.slot(size_t(y) * size_t(left.width) + size_t(x), 0);
+    *b = FirstBounce{};
+    b->instance = instance;
+    b->position = hit.position + shift;
+    b->normal = hit.shadingNormal;
+    return b;
+  }
+  const FirstBounce* partner() const {
+    return findPartner(paths, hit, right.pose.position, kOffset, 0);
+  }
+};
+
+// The partner is the nearest left sample when it is the same surface point; at an edge
+// (the nearest is another instance) it is the nearest neighbouring sample that is, and none
+// when no neighbour is either or the one that is lies beyond kPartnerPixels footprints.
+TEST(StereoReuse, AnEdgeTakesTheNearestNeighbourThatIsTheSameSurface) {
+  PartnerSetup s;
+  const float footprint = s.paths.pixelAngle * 4.0f;
+  const FirstBounce* nearest = s.record(10, 8, 3);
+  const FirstBounce* neighbour = s.record(11, 8, 3, glm::vec3(0.5f * footprint, 0, 0));
+  EXPECT_EQ(s.partner(), nearest);
+  s.record(10, 8, 7);  // the nearest sample now sees another object
+  EXPECT_EQ(s.partner(), neighbour);
+  const FirstBounce* closer = s.record(9, 7, 3, glm::vec3(0, 0.2f * footprint, 0));
+  EXPECT_EQ(s.partner(), closer);  // of two neighbours, the nearer
+  s.record(9, 7, 7);
+  s.record(11, 8, 3, glm::vec3(2.0f * footprint, 0, 0));  // beyond 1.5 footprints
+  EXPECT_EQ(s.partner(), nullptr);
+}
+
 struct Mean {
   double value = 0.0, standardError = 0.0;
 };
