@@ -310,11 +310,10 @@ int run(const Options& o) {
   std::filesystem::create_directories(a.out);
   std::ofstream csv(a.out + "/bench_stereo.csv");
   csv << "scene,hybrid_off_left_ms,hybrid_off_right_ms,hybrid_on_left_ms,hybrid_on_right_ms,"
-         "hybrid_right_over_left,hybrid_reused_share,hybrid_own_bounce_share,pt_off_left_ms,pt_off_"
-         "right_ms,"
-         "pt_on_left_ms,pt_on_right_ms,pt_right_over_left,pt_reused_share,frames_off,frames_on,"
-         "relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,trimmed_off_left,"
-         "trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
+         "hybrid_right_over_left,hybrid_reused_share,hybrid_own_bounce_share,pt_off_left_ms,"
+         "pt_off_right_ms,pt_on_left_ms,pt_on_right_ms,pt_right_over_left,pt_reused_share,"
+         "frames_off,frames_on,relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,"
+         "trimmed_off_left,trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
          "correlation_on\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
