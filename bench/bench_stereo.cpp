@@ -190,7 +190,10 @@ std::vector<std::pair<size_t, size_t>> correspondingPixels(const TraceContext& c
     if (!hit[1][i]) continue;
     SurfaceHit h = hits[1][i];
     h.bsdf.roughness = 1.0f;  // every surface point, whatever its material
-    if (const FirstBounce* b = findPartner(left, h, eyes[1].pose.position, glm::vec2(0.0f), 0))
+    const EyeCamera& c = eyes[1];
+    const glm::vec3 centreRay =
+        c.rayDirection(float(i % c.width) + 0.5f, float(i / c.width) + 0.5f);
+    if (const FirstBounce* b = findPartner(left, h, {c.pose.position, centreRay}))
       pairs.push_back({i, size_t(b - left.bounces.data())});
   }
   return pairs;

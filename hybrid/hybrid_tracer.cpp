@@ -77,12 +77,14 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
                                   ctx.settings.sampler};
           const SurfaceHit& hit = hits[i].surface;
+          const glm::vec3 centreRay = cam.rayDirection(x + 0.5f, y + 0.5f);  // for findPartner
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
             const FirstBounce* partner =
-                stereo.reuse ? findPartner(*stereo.reuse, hit, cam.pose.position, cam.jitter, s)
-                             : nullptr;
+                stereo.reuse
+                    ? findPartner(*stereo.reuse, hit, {cam.pose.position, centreRay, cam.jitter, s})
+                    : nullptr;
             tileReused += partner != nullptr;
             batcher.addHit(hit, dir, counters, record, partner);
           }

@@ -58,6 +58,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       if (batcher.full()) batcher.flush(ctx, img, counts.traced);
       batcher.beginPixel(i);
       bool first = true;
+      const glm::vec3 centreRay = cam.rayDirection(x + 0.5f, y + 0.5f);  // for findPartner
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();
@@ -73,8 +74,9 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         }
         FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
         const FirstBounce* partner =
-            stereo.reuse ? findPartner(*stereo.reuse, hit, cam.pose.position,
-                                       samplePosition(ctx.settings.sampler, frame * spp + s), s)
+            stereo.reuse ? findPartner(*stereo.reuse, hit,
+                                       {cam.pose.position, centreRay,
+                                        samplePosition(ctx.settings.sampler, frame * spp + s), s})
                          : nullptr;
         counts.reused += partner != nullptr;
         ++counts.paths;

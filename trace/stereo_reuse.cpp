@@ -85,24 +85,52 @@ const FirstBounce* partnerAt(const StereoPaths& left, int x, int y, uint32_t sam
   return glm::dot(d, d) <= maxDistance2 ? &b : nullptr;
 }
 
+// How far from x1R (in its pixel footprints) the right pixel's centre on x1R's tangent plane
+// may lie: a sample is at most ~0.7 pixel from its pixel's centre, which a plane seen at a
+// slant stretches by 1 / cos: 8 footprints hold it down to ~5 degrees above the plane.
+constexpr float kCentreReach = 8.0f;
+
+// The left window position (pixels) whose pixel holds the partner: that of the right
+// pixel's centre on x1R's surface, where the centre ray meets x1R's tangent plane. It stays
+// in one left pixel from frame to frame while the jitter moves x1R across the right pixel,
+// also where the disparity changes across it (a floor seen at a slant: x1R's own position
+// less the sample's offset crossed into the next left pixel for some offsets, and the right
+// pixel mixed two left pixels' stratified sequences, ~3 % more variance on atrium). Where
+// that point is beyond kCentreReach (the centre ray grazes the plane), x1R's position less
+// the offset: the left pixel whose sample, at its centre + the offset as this one's, is
+// nearest x1R. False: behind the left eye.
+bool leftWindowPoint(const StereoPaths& left, const SurfaceHit& hit, const RightSample& right,
+                     float footprint, glm::vec2& window) {
+  const glm::vec3& n = hit.geometricNormal;
+  const float t = glm::dot(hit.position - right.eye, n) / glm::dot(right.centreRay, n);
+  const glm::vec3 centre = right.eye + t * right.centreRay;
+  const glm::vec3 d = centre - hit.position;
+  const float reach = kCentreReach * footprint;
+  const bool onPlane = t > 0.0f && glm::dot(d, d) <= reach * reach;  // false for NaN
+  // (px t, py t, t): the linear ray map inverted.
+  const glm::vec3 w =
+      left.toWindow * ((onPlane ? centre : hit.position) - left.camera.pose.position);
+  if (!(w.z > 0.0f)) return false;  // behind the left eye (or NaN)
+  window = glm::vec2(w.x, w.y) / w.z - (onPlane ? glm::vec2(0.0f) : right.offset);
+  return true;
+}
+
 }  // namespace
 
-const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, const glm::vec3& eye,
-                               glm::vec2 offset2, uint32_t sample) {
+const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
+                               const RightSample& right) {
+  const uint32_t sample = right.sample;
   if (sample >= left.stride) return nullptr;
   const glm::vec3 offset = hit.position - left.camera.pose.position;
-  if (!roughEnough(hit, -offset, eye - hit.position)) return nullptr;
-  const glm::vec3 w = left.toWindow * offset;  // (px t, py t, t): the linear ray map inverted
-  if (!(w.z > 0.0f)) return nullptr;           // behind the left eye (or NaN)
-  // The left pixel whose sample (at its centre + offset2, as this one's) is nearest: the
-  // same left pixel in every frame while the disparity stays (offset2 changes per frame),
-  // so the right pixel keeps one left pixel's stratified sequence.
-  const float px = w.x / w.z - offset2.x, py = w.y / w.z - offset2.y;
+  if (!roughEnough(hit, -offset, right.eye - hit.position)) return nullptr;
+  const float footprint = left.pixelAngle * glm::length(offset);
+  const float maxDistance2 = (kPartnerPixels * footprint) * (kPartnerPixels * footprint);
+  glm::vec2 window;
+  if (!leftWindowPoint(left, hit, right, footprint, window)) return nullptr;
+  const float px = window.x, py = window.y;
   if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
         py < float(left.camera.height)))
     return nullptr;
-  const float footprint = left.pixelAngle * glm::length(offset);
-  const float maxDistance2 = (kPartnerPixels * footprint) * (kPartnerPixels * footprint);
   const int x = int(px), y = int(py);
   if (const FirstBounce* b = partnerAt(left, x, y, sample, hit, maxDistance2)) return b;
   // Where that sample is another surface (an edge, a thin object), the nearest of its

@@ -170,10 +170,18 @@ inline StereoRole stereoRoleOf(bool on, int eye, int eyeCount, StereoPaths& path
   return eye == 0 ? StereoRole{&paths, nullptr} : StereoRole{nullptr, &paths};
 }
 
-// The left sample the right eye's sample 'sample' at 'hit', seen from 'eye' (the right
-// eye's position) through its pixel's centre + 'offset' (the sample's sub-pixel position,
-// the same in both eyes), reuses, or null: its own path.
-const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit, const glm::vec3& eye,
-                               glm::vec2 offset, uint32_t sample);
+// A right-eye sample looking for a partner: seen from 'eye' (the right eye's position)
+// through its pixel's centre + 'offset' (the sample's sub-pixel position, the same in both
+// eyes); 'centreRay' is the unit ray through that pixel's centre; 'sample' is its index
+// among the pixel's samples (the left slot it may reuse).
+struct RightSample {
+  glm::vec3 eye{0.0f}, centreRay{0.0f, 0.0f, -1.0f};
+  glm::vec2 offset{0.0f};
+  uint32_t sample = 0;
+};
+
+// The left sample the right eye's sample at 'hit' reuses, or null: its own path.
+const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
+                               const RightSample& right);
 
 }  // namespace photovr

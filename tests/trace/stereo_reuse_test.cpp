@@ -109,6 +109,14 @@ TEST(StereoReuse, RightEyeConvergesToItsOwnPathsImage) {
   }
 }
 
+// The ray through the centre of the pixel of 'cam' whose sample at 'offset' sees 'point'.
+glm::vec3 centreRayOf(const EyeCamera& cam, const glm::vec3& point, glm::vec2 offset) {
+  const glm::mat3 toWindow = glm::inverse(glm::mat3(cam.rayDx(), cam.rayDy(), cam.rayBase()));
+  const glm::vec3 w = toWindow * (point - cam.pose.position);
+  const glm::vec2 centre = glm::vec2(w.x, w.y) / w.z - offset;
+  return cam.rayDirection(centre.x, centre.y);
+}
+
 // A right hit 4 m in front of the left eye, on the ray of left pixel (10, 8) at the
 // sample offset (0.25, 0.25), and the left eye's slots for that frame.
 struct PartnerSetup {
@@ -137,7 +145,8 @@ struct PartnerSetup {
     return b;
   }
   const FirstBounce* partner() const {
-    return findPartner(paths, hit, right.pose.position, kOffset, 0);
+    return findPartner(paths, hit,
+                       {right.pose.position, centreRayOf(right, hit.position, kOffset)});
   }
 };
 
@@ -157,6 +166,65 @@ TEST(StereoReuse, AnEdgeTakesTheNearestNeighbourThatIsTheSameSurface) {
   s.record(9, 7, 7);
   s.record(11, 8, 3, glm::vec3(2.0f * footprint, 0, 0));  // beyond 1.5 footprints
   EXPECT_EQ(s.partner(), nullptr);
+}
+
+// Where eye 'cam''s ray through window position 'p' meets the floor y = kFloorY, if it does
+// closer than 'range'.
+constexpr float kFloorY = -0.4f;
+bool floorPoint(const EyeCamera& cam, glm::vec2 p, float range, glm::vec3& point) {
+  const glm::vec3 d = cam.rayDirection(p.x, p.y);
+  const float t = (kFloorY - cam.pose.position.y) / d.y;
+  point = cam.pose.position + t * d;
+  return t > 0.0f && t < range;
+}
+
+// A floor seen at a slant: its disparity changes across a pixel, so the sample's position
+// less its offset (what the partner search used to project) crosses into another left
+// pixel for some offsets. The partner must be one left pixel for every offset (every frame's
+// jitter), or the right pixel mixes two left pixels' stratified sequences and loses their
+// stratification (atrium's right eye had ~3 % more variance). Left samples everywhere on
+// the floor, at each frame's offset, as a left frame records them.
+TEST(StereoReuse, ASlantedFloorKeepsOnePartnerPixelForEveryJitter) {
+  StereoRig rig;
+  const EyeCamera left = rig.eye(Eye::Left, 48, 36), right = rig.eye(Eye::Right, 48, 36);
+  StereoPaths paths;
+  std::vector<std::vector<long>> partners(size_t(right.width) * right.height);
+  for (uint32_t frame = 0; frame < 16; ++frame) {
+    const glm::vec2 offset = samplePosition(SamplerKind::Sobol, frame);
+    paths.reset(left, 1);
+    for (int y = 0; y < left.height; ++y)
+      for (int x = 0; x < left.width; ++x) {
+        glm::vec3 p;
+        if (!floorPoint(left, glm::vec2(x + 0.5f, y + 0.5f) + offset, 1e4f, p)) continue;
+        FirstBounce& b = *paths.slot(size_t(y) * size_t(left.width) + size_t(x), 0);
+        b = FirstBounce{};
+        b.position = p;
+        b.normal = b.geometricNormal = glm::vec3(0, 1, 0);
+        b.instance = 0;
+      }
+    for (int y = 0; y < right.height; ++y)
+      for (int x = 0; x < right.width; ++x) {
+        SurfaceHit hit;
+        // The right eye's within 20 m: near the horizon a pixel spans kilometres of floor.
+        if (!floorPoint(right, glm::vec2(x + 0.5f, y + 0.5f) + offset, 20.0f, hit.position))
+          continue;
+        hit.shadingNormal = hit.geometricNormal = glm::vec3(0, 1, 0);
+        hit.bsdf.roughness = 1.0f;
+        const RightSample sample{right.pose.position, right.rayDirection(x + 0.5f, y + 0.5f),
+                                 offset};
+        if (const FirstBounce* b = findPartner(paths, hit, sample))
+          partners[size_t(y) * size_t(right.width) + size_t(x)].push_back(
+              long(b - paths.bounces.data()));
+      }
+  }
+  size_t pixels = 0, mixed = 0;
+  for (const std::vector<long>& p : partners) {
+    if (p.size() < 16) continue;  // near the horizon or the edge of the left image
+    ++pixels;
+    mixed += std::count(p.begin(), p.end(), p.front()) != long(p.size());
+  }
+  EXPECT_GT(pixels, 200u);  // the lower half of the image, less the left image's edge
+  EXPECT_EQ(mixed, 0u) << "of " << pixels << " floor pixels";
 }
 
 struct Mean {
