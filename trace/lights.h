@@ -3,6 +3,7 @@
 // is picked per estimate, in proportion to an estimate of its power.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct LightSample {
   bool isDelta = false;       // punctual: cannot be hit by BSDF rays, no MIS
   bool isArea = false;        // emissive triangle: shadow ray stops short of it
   bool valid() const { return pdf > 0.0f; }
+  // A light at infinity (the environment, a directional light, their stand-ins): the same
+  // sample, for the same numbers, from every point.
+  bool atInfinity() const { return std::isinf(distance); }
 };
 
 class LightSet {

@@ -65,7 +65,12 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
                  const BsdfVertex& bsdf, bool splitsHere, const VertexNumbers& u,
                  ShadowRay& shadow) {
   if (ctx.lights.empty()) return false;
-  const LightSample ls = ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
+  // A reused right sample draws the left's numbers: a light at infinity gives the left's
+  // sample again, so it is taken from the record (stereo_reuse.h).
+  const LightSample ls = p.reuse && p.reuse->light.valid()
+                             ? p.reuse->light
+                             : ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
+  if (p.record && p.depth == 0 && ls.atInfinity()) p.record->light = ls;
   if (!ls.valid()) return false;
   const glm::vec3 wiL = frame.toLocal(ls.direction);
   if (!sameSide(ls.direction, p.hit, wiL)) return false;
@@ -101,18 +106,28 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   return true;
 }
 
-// Emission or environment found by a BSDF-sampled ray, MIS-weighted against NEE.
-glm::vec3 foundLight(const TraceContext& ctx, const PathState& from, const TraceHit& th,
-                     const SurfaceHit* to, const glm::vec3& wi, float bsdfPdf) {
+// Emission or environment found by a BSDF-sampled ray, unweighted, and the density with
+// which NEE samples it (for the MIS weight).
+struct FoundLight {
+  glm::vec3 emitted{0.0f};
+  float lightPdf = 0.0f;
+  // MIS-weighted against NEE for a ray sampled with density 'bsdfPdf'.
+  glm::vec3 weighted(float bsdfPdf) const {
+    if (emitted == glm::vec3(0.0f)) return emitted;
+    return emitted * powerHeuristic(1, bsdfPdf, 1, lightPdf);
+  }
+};
+
+FoundLight foundLight(const TraceContext& ctx, const PathState& from, const TraceHit& th,
+                      const SurfaceHit* to, const glm::vec3& wi) {
   if (!th.hit) {
     const glm::vec3 le = ctx.lights.environmentRadiance(wi);
-    if (le == glm::vec3(0.0f)) return le;
-    return le * powerHeuristic(1, bsdfPdf, 1, ctx.lights.pdfEnvironment(wi));
+    if (le == glm::vec3(0.0f)) return {};
+    return {le, ctx.lights.pdfEnvironment(wi)};
   }
-  if (to->emission == glm::vec3(0.0f)) return glm::vec3(0.0f);
-  const float lightPdf = ctx.lights.pdfArea(th.instance, th.triangle, from.hit.position,
-                                            to->position, to->geometricNormal);
-  return to->emission * powerHeuristic(1, bsdfPdf, 1, lightPdf);
+  if (to->emission == glm::vec3(0.0f)) return {};
+  return {to->emission, ctx.lights.pdfArea(th.instance, th.triangle, from.hit.position,
+                                           to->position, to->geometricNormal)};
 }
 
 bool finite(const glm::vec3& v) {
@@ -150,7 +165,7 @@ void reuseBounce(const TraceContext& ctx, const PathState& p, const Frame& frame
   if (b.emitted != glm::vec3(0.0f)) {
     const float lightPdf =
         b.hit ? ctx.lights.pdfArea(b.instance2, b.triangle2, p.hit.position, b.x2, b.n2)
-              : ctx.lights.pdfEnvironment(wi);
+              : b.environmentPdf;  // the same direction's: the environment is at infinity
     incoming += b.emitted * powerHeuristic(1, e.pdf, 1, lightPdf);
   }
   const glm::vec3 scale = incoming * (std::abs(wiL.z) / b.pdf);
@@ -165,18 +180,18 @@ glm::vec3 divideOrZero(const glm::vec3& a, const glm::vec3& b) {
 }
 
 // The left path's second vertex as the right eye's reuse needs it.
-void recordSecondVertex(const TraceContext& ctx, PathState& p, const PathResult& result,
-                        const TraceHit& th, const SurfaceHit& next) {
+void recordSecondVertex(PathState& p, const PathResult& result, const TraceHit& th,
+                        const SurfaceHit& next, const FoundLight& found) {
   FirstBounce& b = *p.record;
   b.hit = th.hit;
+  b.emitted = found.emitted;
   if (th.hit) {
     b.x2 = next.position;
     b.n2 = next.geometricNormal;
     b.instance2 = th.instance;
     b.triangle2 = th.triangle;
-    b.emitted = next.emission;
   } else {
-    b.emitted = ctx.lights.environmentRadiance(p.wi);
+    b.environmentPdf = found.lightPdf;
   }
   p.before0 = result.diffuse + result.specular;
 }
@@ -311,9 +326,9 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
     if (p.media.size > 0 && next.bsdf.eta > 0.0f && volumeMaterial(ctx.scene, th.instance))
       next.bsdf.eta = relativeEta(ctx.scene, p.media, th.instance, next.frontFace);
   }
-  addSplit(result, p.beta * foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi, p.bsdfPdf),
-           p.share);
-  if (p.depth == 0 && p.record) recordSecondVertex(ctx, p, result, th, next);
+  const FoundLight found = foundLight(ctx, p, th, th.hit ? &next : nullptr, p.wi);
+  addSplit(result, p.beta * found.weighted(p.bsdfPdf), p.share);
+  if (p.depth == 0 && p.record) recordSecondVertex(p, result, th, next, found);
   if (!th.hit || p.last) return false;
   p.beta /= p.survival;
   p.hit = next;

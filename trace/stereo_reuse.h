@@ -53,6 +53,7 @@
 
 #include "core/camera.h"
 #include "trace/bsdf.h"
+#include "trace/lights.h"
 #include "trace/rng.h"
 #include "trace/sampling.h"
 #include "trace/surface.h"
@@ -74,9 +75,13 @@ struct FirstBounce {
   float pdf = 0.0f;                  // its solid-angle pdf
   glm::vec3 x2{0.0f}, n2{0.0f};      // x2 and its geometric normal (the light pdf of Le(x2))
   uint32_t instance2 = 0, triangle2 = 0;
-  glm::vec3 emitted{0.0f};  // Le(x2 -> x1L), or the environment along 'dir', unweighted
-  glm::vec3 beyond{0.0f};   // radiance leaving x2 towards x1L without Le(x2), per unit throughput
-  PathSampler sampler;      // the left path's numbers: the right sample's NEE draws them too
+  glm::vec3 emitted{0.0f};      // Le(x2 -> x1L), or the environment along 'dir', unweighted
+  float environmentPdf = 0.0f;  // ... the environment's NEE density along 'dir' (MIS), if so
+  glm::vec3 beyond{0.0f};  // radiance leaving x2 towards x1L without Le(x2), per unit throughput
+  PathSampler sampler;     // the left path's numbers: the right sample's NEE draws them too
+  // The left path's light sample at x1L if it is a light at infinity, which the right
+  // sample's NEE, drawing the same numbers, would sample again to the bit; else invalid.
+  LightSample light;
 };
 
 // The left eye's first bounces of one frame, for its right eye.
