@@ -77,7 +77,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,
                                   ctx.settings.sampler};
           const SurfaceHit& hit = hits[i].surface;
-          const glm::vec3 centreRay = cam.rayDirection(x + 0.5f, y + 0.5f);  // for findPartner
+          const glm::vec3 centreRay =  // for findPartner
+              stereo.reuse ? cam.rayDirection(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;

@@ -58,7 +58,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       if (batcher.full()) batcher.flush(ctx, img, counts.traced);
       batcher.beginPixel(i);
       bool first = true;
-      const glm::vec3 centreRay = cam.rayDirection(x + 0.5f, y + 0.5f);  // for findPartner
+      const glm::vec3 centreRay =  // for findPartner
+          stereo.reuse ? cam.rayDirection(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();
