@@ -256,7 +256,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   result.rays += rays.shadow;
   std::optional<ReuseSplit> split;
   if (p.reuse) {
-    split.emplace(*p.reuse, p.hit, bsdf);
+    split.emplace(*p.reuse, p.hit, bsdf, p.wo);
     reuseBounce(ctx, p, frame, bsdf, *split, result);
     if (split->whole()) return rays;
   }

@@ -31,13 +31,27 @@ bool lobesAlike(float left, float right) {
   return right <= kReusePdfRatio * left && 1.0f - right <= kReusePdfRatio * (1.0f - left);
 }
 
+// Whether the right vertex's lobes are wide enough for the views' change alone to be left
+// to the reused term (kReuseMinRoughness): the smallest GGX alpha of its lobes at least the
+// angle between the views ('toLeft', 'toRight': unit), and never mirror-like.
+bool wideAgainstViews(const BsdfParams& bsdf, const glm::vec3& toLeft, const glm::vec3& toRight) {
+  // A clear coat is a glossy lobe of its own roughness.
+  const float roughness =
+      bsdf.clearcoat > 0.0f ? std::min(bsdf.roughness, bsdf.clearcoatRoughness) : bsdf.roughness;
+  if (!(roughness >= kReuseMinRoughness)) return false;
+  // alpha >= acos(c), with alpha <= 1 < pi: c >= cos(alpha).
+  return glm::dot(toLeft, toRight) >= std::cos(roughnessToAlpha(roughness));
+}
+
 }  // namespace
 
-ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex)
+ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
+                       const glm::vec3& wo)
     : b_(b) {
   whole_ = b.woAbove && b.normal == right.shadingNormal &&
            b.geometricNormal == right.geometricNormal &&
-           lobesAlike(b.specularProbability, rightVertex.specularProbability);
+           lobesAlike(b.specularProbability, rightVertex.specularProbability) &&
+           wideAgainstViews(right.bsdf, b.wo, wo);
   if (whole_) return;
   frame_ = Frame::fromZ(b.normal);
   vertex_ = prepareBsdf(right.bsdf, frame_.toLocal(b.wo));
@@ -48,25 +62,6 @@ float ReuseSplit::leftPdf(const glm::vec3& w) const {
   if (!leftCovers(b_, w)) return 0.0f;
   return evalBsdfAndPdf(vertex_, frame_.toLocal(w)).pdf;
 }
-
-namespace {
-
-// The lobe test of kReuseMinRoughness: alpha against the angle between the views.
-bool roughEnough(const SurfaceHit& hit, const glm::vec3& toLeft, const glm::vec3& toRight) {
-  if (hit.bsdf.roughness < kReuseMinRoughness) return false;
-  // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
-  // between the eyes by its own parallax, not the glass surface's.
-  if (hit.bsdf.transmission > 0.0f) return false;
-  // A clear coat is a glossy lobe of its own roughness.
-  const float roughness = hit.bsdf.clearcoat > 0.0f
-                              ? std::min(hit.bsdf.roughness, hit.bsdf.clearcoatRoughness)
-                              : hit.bsdf.roughness;
-  if (roughness < kReuseMinRoughness) return false;
-  const float c = glm::dot(glm::normalize(toLeft), glm::normalize(toRight));
-  return roughnessToAlpha(roughness) >= std::acos(std::min(1.0f, c));
-}
-
-}  // namespace
 
 namespace {
 
@@ -121,8 +116,10 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
                                const RightSample& right) {
   const uint32_t sample = right.sample;
   if (sample >= left.stride) return nullptr;
+  // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
+  // between the eyes by its own parallax, not the glass surface's.
+  if (hit.bsdf.transmission > 0.0f) return nullptr;
   const glm::vec3 offset = hit.position - left.camera.pose.position;
-  if (!roughEnough(hit, -offset, right.eye - hit.position)) return nullptr;
   const float footprint = left.pixelAngle * glm::length(offset);
   const float maxDistance2 = (kPartnerPixels * footprint) * (kPartnerPixels * footprint);
   glm::vec2 window;

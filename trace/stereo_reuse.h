@@ -25,15 +25,15 @@
 // (curved surfaces, normal maps: without it the right vertex lost ~theta^2 / 4 of a
 // Lambertian vertex's bounce light at normals theta apart), every direction where x1L's
 // view is below its shading horizon, and the right lobe's part where the left pdf is thin:
-// a glossy lobe on a curved surface, whose peak moves by twice the normals' angle; the
-// cosine lobe near the left's horizon, where cos_R / cos_L has no bound; a specular lobe
-// the left picks less often (a texture edge). Without B those were fireflies the right
-// eye's relMSE kept at 2048 frames (docs/MEASUREMENTS.md, "Stereo path reuse"). Le(x2), the
-// emission the left ray found, is weighted against the right sample's own NEE with the power
-// heuristic of the right vertex's own pdfs, so the two weights sum to one for every direction
-// (unbiased MIS; Veach 1997 sec. 9.2). The right sample's NEE draws the left sample's numbers from
-// its own x1R, with its own shadow ray, so direct light is exact and its noise matches the left
-// eye's.
+// a glossy lobe on a curved surface, whose peak moves by twice the normals' angle; a lobe
+// thinner than the views' angle (a mirror), whose peak the view change moves; the cosine lobe near
+// the left's horizon, where cos_R / cos_L has no bound; a specular lobe the left picks less often
+// (a texture edge). Without B those were fireflies the right eye's relMSE kept at 2048 frames
+// (docs/MEASUREMENTS.md, "Stereo path reuse"). Le(x2), the emission the left ray found, is weighted
+// against the right sample's own NEE with the power heuristic of the right vertex's own pdfs, so
+// the two weights sum to one for every direction (unbiased MIS; Veach 1997 sec. 9.2). The right
+// sample's NEE draws the left sample's numbers from its own x1R, with its own shadow ray, so direct
+// light is exact and its noise matches the left eye's.
 //
 // The approximation: the radiance arriving at x1R along w is taken as the radiance arriving
 // at x1L along w. The two points lie within kPartnerPixels footprints of each other, so only
@@ -124,7 +124,7 @@ inline bool leftCovers(const FirstBounce& b, const glm::vec3& w) {
 // Where the two vertices share both normals and the left view is above its horizon, the
 // left support holds the right's, and where the left also picks each lobe at least
 // 1 / kReusePdfRatio as often as the right, the left pdf is within that ratio of the right's
-// but for the view change, which the roughness test bounds (the usual case on a flat
+// but for the view change, which the roughness test below bounds (the usual case on a flat
 // surface): there every direction is the reused term's ('whole'), and the right sample
 // draws nothing of its own. (Any split with the reused part inside the left's support is
 // unbiased; this choice only skips computing g where it would change next to nothing.)
@@ -132,7 +132,9 @@ constexpr float kReusePdfRatio = 2.0f;
 
 class ReuseSplit {
  public:
-  ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex);
+  // 'wo': the right view (unit, towards the right eye).
+  ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
+             const glm::vec3& wo);
   // Every direction of the right vertex is the reused term's.
   bool whole() const { return whole_; }
   // Whether w, whose pdf at the right vertex is rightPdf, belongs to the reused term.
@@ -154,12 +156,16 @@ class ReuseSplit {
 // away; 1.5 leaves room for its jitter).
 constexpr float kPartnerNormalCos = 0.9f;
 constexpr float kPartnerPixels = 1.5f;
-// A right vertex reuses only where the left sample's pdf covers its lobe well: its GGX
-// alpha at least the angle between the eyes' views of it (then the right lobe's peak, which
-// the view change moves by about half that angle in half-vector space, sits where the left
-// lobe's D is still >= 0.64 of its peak: 1 / (1 + 1/4)^2, so f / pdf grows by <= 1.6x), and
-// never below mirror-like roughness (kMirrorRoughness, 0.1: alpha 0.01 is a near-delta lobe
-// whatever the angle). Smoother vertices (glossy lobes, mirrors) trace their own paths.
+// 'whole' also needs the right vertex's lobes wide against the views' change, which it
+// leaves to the reused term: its GGX alpha at least the angle between the eyes' views of
+// it (then the right lobe's peak, which the view change moves by about half that angle in
+// half-vector space, sits where the left lobe's D is still >= 0.64 of its peak:
+// 1 / (1 + 1/4)^2, so f / pdf grows by <= 1.6x), and never below mirror-like roughness
+// (kMirrorRoughness, 0.1: alpha 0.01 is a near-delta lobe whatever the angle). A smoother
+// vertex (a glossy lobe, a mirror, a smooth coat on a diffuse base) is split like a tilted
+// one: its thin lobe where the left's does not cover it is its own to trace, and its
+// diffuse base is reused (spheres: 99 % of the right eye's samples reused against 94 % when
+// smooth vertices traced all their paths themselves).
 constexpr float kReuseMinRoughness = 0.1f;
 
 // How one eye's tracer takes part: the left eye records into 'record' (which it resets),

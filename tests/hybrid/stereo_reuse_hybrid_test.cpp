@@ -48,7 +48,7 @@ TEST(StereoReuseHybrid, RightEyeConvergesToItsOwnPathsImage) {
                             testing::statisticsOf(right[0], kW, kH), testing::kRegions);
     EXPECT_LT(z, testing::kMaxZ) << name;
     // Most of a right eye sees what the left eye sees; the rest (the other eye's hidden
-    // surfaces, the field's edge, smooth lobes) traces its own paths.
+    // surfaces, the field's edge, glass) traces its own paths.
     EXPECT_GT(double(reused), 0.5 * double(paths)) << name;
     std::printf("  %-8s reused %.3f of the right eye's paths, max region |z| %.2f\n", name.c_str(),
                 double(reused) / double(paths), z);
