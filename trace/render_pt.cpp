@@ -74,16 +74,20 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           first = false;
         }
         FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
-        const FirstBounce* partner =
-            stereo.reuse ? findPartner(*stereo.reuse, hit,
-                                       {cam.pose.position, centreRay,
-                                        samplePosition(ctx.settings.sampler, frame * spp + s), s})
-                         : nullptr;
+        SampleCounters counters{uint32_t(i),         eye, frame, s, 0, ctx.settings.seed, spp,
+                                ctx.settings.sampler};
+        const FirstBounce* partner = nullptr;
+        if (stereo.reuse) {
+          uint32_t leftPixel = kNoLeftPixel;
+          partner = findPartner(*stereo.reuse, hit,
+                                {cam.pose.position, centreRay,
+                                 samplePosition(ctx.settings.sampler, frame * spp + s), s},
+                                &leftPixel);
+          if (!partner) counters = ownPathCounters(counters, leftPixel);
+        }
         counts.reused += partner != nullptr;
         ++counts.paths;
-        batcher.addHit(
-            hit, dir, {uint32_t(i), eye, frame, s, 0, ctx.settings.seed, spp, ctx.settings.sampler},
-            record, partner);
+        batcher.addHit(hit, dir, counters, record, partner);
       }
     }
   batcher.flush(ctx, img, counts.traced);

@@ -113,7 +113,8 @@ bool leftWindowPoint(const StereoPaths& left, const SurfaceHit& hit, const Right
 }  // namespace
 
 const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
-                               const RightSample& right) {
+                               const RightSample& right, uint32_t* leftPixel) {
+  if (leftPixel) *leftPixel = kNoLeftPixel;
   const uint32_t sample = right.sample;
   if (sample >= left.stride) return nullptr;
   // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
@@ -129,6 +130,7 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
         py < float(left.camera.height)))
     return nullptr;
   const int x = int(px), y = int(py);
+  if (leftPixel) *leftPixel = uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
   if (const FirstBounce* b = partnerAt(left, x, y, sample, hit, maxDistance2)) return b;
   // Where that sample is another surface (an edge, a thin object), the nearest of its
   // neighbours' samples that is this one (still within kPartnerPixels footprints), in a

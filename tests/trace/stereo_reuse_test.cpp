@@ -82,8 +82,8 @@ TEST(StereoReuse, EyesAtOnePlaceGiveTheLeftImage) {
 
 // Right eye, reuse on against off: the same expected image region by region within Monte
 // Carlo error on every built-in scene (spheres has the mirror and the glossy sweep: their
-// right samples trace their lobes' peaks themselves and reuse the rest). This bounds the shift's two
-// approximations (radiance at x2 towards x1R taken as towards x1L, x1R -> x2 visibility as
+// right samples trace their lobes' peaks themselves and reuse the rest). This bounds the shift's
+// two approximations (radiance at x2 towards x1R taken as towards x1L, x1R -> x2 visibility as
 // x1L's) at the resolution of the test: 6 sigma of 128 frames at 32 x 36.
 TEST(StereoReuse, RightEyeConvergesToItsOwnPathsImage) {
   constexpr int kW = 32, kH = 36, kFrames = 128;
@@ -166,6 +166,29 @@ TEST(StereoReuse, AnEdgeTakesTheNearestNeighbourThatIsTheSameSurface) {
   s.record(9, 7, 7);
   s.record(11, 8, 3, glm::vec3(2.0f * footprint, 0, 0));  // beyond 1.5 footprints
   EXPECT_EQ(s.partner(), nullptr);
+}
+
+// A right sample without a partner draws its own path with the numbers of the left pixel
+// that stands for its pixel (ownPathCounters), so that over the frames the right pixel
+// keeps that one pixel's Sobol sequence whether its samples reuse or not; with no left
+// pixel for it (outside the left image), its own numbers.
+TEST(StereoReuse, ARightSampleWithoutPartnerDrawsItsLeftPixelsNumbers) {
+  PartnerSetup s;
+  s.record(10, 8, 7);  // the left pixel sees another object, and no neighbour is recorded
+  const RightSample sample{s.right.pose.position,
+                           centreRayOf(s.right, s.hit.position, PartnerSetup::kOffset)};
+  uint32_t leftPixel = 0;
+  EXPECT_EQ(findPartner(s.paths, s.hit, sample, &leftPixel), nullptr);
+  EXPECT_EQ(leftPixel, 8u * uint32_t(s.left.width) + 10u);
+  const SampleCounters own{.pixel = 99, .eye = 1, .frame = 5, .sample = 0};
+  const SampleCounters drawn = ownPathCounters(own, leftPixel);
+  EXPECT_EQ(drawn.pixel, leftPixel);
+  EXPECT_EQ(drawn.eye, 0u);  // the left eye's numbers
+  EXPECT_EQ(drawn.frame, 5u);
+  s.hit.position = s.right.pose.position + 4.0f * glm::vec3(1.0f, 0.0f, 0.0f);  // beside the eye
+  EXPECT_EQ(findPartner(s.paths, s.hit, sample, &leftPixel), nullptr);
+  EXPECT_EQ(leftPixel, kNoLeftPixel);
+  EXPECT_EQ(ownPathCounters(own, leftPixel).pixel, 99u);
 }
 
 // Where eye 'cam''s ray through window position 'p' meets the floor y = kFloorY, if it does
