@@ -70,7 +70,6 @@ namespace {
 // within 'maxDistance2' (squared) of it.
 const FirstBounce* partnerAt(const StereoPaths& left, int x, int y, uint32_t sample,
                              const SurfaceHit& hit, float maxDistance2) {
-  if (x < 0 || y < 0 || x >= left.camera.width || y >= left.camera.height) return nullptr;
   const size_t slot = (size_t(y) * size_t(left.camera.width) + size_t(x)) * left.stride + sample;
   if (left.stamps[slot] != left.generation) return nullptr;  // no left path this frame
   const FirstBounce& b = left.bounces[slot];
@@ -131,22 +130,10 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
     return nullptr;
   const int x = int(px), y = int(py);
   if (leftPixel) *leftPixel = uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
-  if (const FirstBounce* b = partnerAt(left, x, y, sample, hit, maxDistance2)) return b;
-  // Where that sample is another surface (an edge, a thin object), the nearest of its
-  // neighbours' samples that is this one (still within kPartnerPixels footprints), in a
-  // fixed order, so that the choice too stays from frame to frame.
-  const FirstBounce* best = nullptr;
-  float bestDistance2 = maxDistance2;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      if (dx == 0 && dy == 0) continue;
-      const FirstBounce* b = partnerAt(left, x + dx, y + dy, sample, hit, bestDistance2);
-      if (!b) continue;
-      const glm::vec3 d = b->position - hit.position;
-      bestDistance2 = glm::dot(d, d);
-      best = b;
-    }
-  return best;
+  // Where that sample is another surface (an edge, a thin object), none: a neighbour's
+  // sample of this surface would give the right pixel another pixel's sequence in those
+  // frames, and its own path draws this left pixel's numbers instead (ownPathCounters).
+  return partnerAt(left, x, y, sample, hit, maxDistance2);
 }
 
 }  // namespace photovr
