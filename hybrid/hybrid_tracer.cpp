@@ -82,14 +82,14 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
-            const FirstBounce* partner = nullptr;
-            uint32_t leftPixel = kNoLeftPixel;
-            if (stereo.reuse)
-              partner = findPartner(*stereo.reuse, hit,
-                                    {cam.pose.position, centreRay, cam.jitter, s}, &leftPixel);
+            SampleCounters own = counters;
+            const FirstBounce* partner =
+                stereo.reuse
+                    ? partnerOrOwnNumbers(*stereo.reuse, hit,
+                                          {cam.pose.position, centreRay, cam.jitter, s}, own)
+                    : nullptr;
             tileReused += partner != nullptr;
-            batcher.addHit(hit, dir, partner ? counters : ownPathCounters(counters, leftPixel),
-                           record, partner);
+            batcher.addHit(hit, dir, own, record, partner);
           }
           tilePaths += spp;
           ++tileTraced;

@@ -76,15 +76,13 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
         SampleCounters counters{uint32_t(i),         eye, frame, s, 0, ctx.settings.seed, spp,
                                 ctx.settings.sampler};
-        const FirstBounce* partner = nullptr;
-        if (stereo.reuse) {
-          uint32_t leftPixel = kNoLeftPixel;
-          partner = findPartner(*stereo.reuse, hit,
-                                {cam.pose.position, centreRay,
-                                 samplePosition(ctx.settings.sampler, frame * spp + s), s},
-                                &leftPixel);
-          if (!partner) counters = ownPathCounters(counters, leftPixel);
-        }
+        const FirstBounce* partner =
+            stereo.reuse
+                ? partnerOrOwnNumbers(*stereo.reuse, hit,
+                                      {cam.pose.position, centreRay,
+                                       samplePosition(ctx.settings.sampler, frame * spp + s), s},
+                                      counters)
+                : nullptr;
         counts.reused += partner != nullptr;
         ++counts.paths;
         batcher.addHit(hit, dir, counters, record, partner);

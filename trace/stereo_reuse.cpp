@@ -65,9 +65,9 @@ float ReuseSplit::leftPdf(const glm::vec3& w) const {
 
 namespace {
 
-// Left sample 'sample' of pixel (x, y) if it was recorded this frame and is the same surface
-// point as the right hit for the shift: same instance, normals within kPartnerNormalCos,
-// within 'maxDistance2' (squared) of it.
+// Left sample 'sample' of pixel (x, y), inside the left image, if it was recorded this frame and is
+// the same surface point as the right hit for the shift: same instance, normals within
+// kPartnerNormalCos, within 'maxDistance2' (squared) of it.
 const FirstBounce* partnerAt(const StereoPaths& left, int x, int y, uint32_t sample,
                              const SurfaceHit& hit, float maxDistance2) {
   const size_t slot = (size_t(y) * size_t(left.camera.width) + size_t(x)) * left.stride + sample;

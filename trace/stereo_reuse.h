@@ -214,4 +214,14 @@ inline SampleCounters ownPathCounters(SampleCounters own, uint32_t leftPixel) {
   return own;
 }
 
+// A right sample's partner (findPartner), or null with 'counters', the numbers its own path
+// draws, turned to its left pixel's (ownPathCounters).
+inline const FirstBounce* partnerOrOwnNumbers(const StereoPaths& left, const SurfaceHit& hit,
+                                              const RightSample& right, SampleCounters& counters) {
+  uint32_t leftPixel = kNoLeftPixel;
+  const FirstBounce* partner = findPartner(left, hit, right, &leftPixel);
+  if (!partner) counters = ownPathCounters(counters, leftPixel);
+  return partner;
+}
+
 }  // namespace photovr
