@@ -25,7 +25,7 @@ prepare() {
   objects=$(ls "$build"/core/CMakeFiles/photovr_core.dir/*.o |
     grep -v -E '/(image_io|environment_io|gltf_[a-z_]*|exr_header)\.cpp\.o$')
   # shellcheck disable=SC2086
-  c++ -O3 -Wl,--as-needed "$build"/bench/CMakeFiles/photovr_bench_trace.dir/bench_trace.cpp.o \
+  c++ -O3 -Wl,--as-needed "$build"/bench/CMakeFiles/photovr_bench_trace.dir/*.cpp.o \
     -o "$probe/photovr_bench_trace" "$build"/trace/libphotovr_trace.a $objects \
     "$(readlink -f /usr/lib/x86_64-linux-gnu/libtbb.so.12)" \
     "$(readlink -f /usr/lib/x86_64-linux-gnu/libembree3.so.3)"

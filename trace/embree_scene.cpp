@@ -297,7 +297,15 @@ void EmbreeScene::occludedBatch(BatchRay* rays, size_t count, BatchCall call, bo
   rtcOccluded1M(impl_->top, &ctx, embreeRays(rays), unsigned(count), sizeof(BatchRay));
 }
 
-ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count) const {
+ReplayCounts& ReplayCounts::operator+=(const ReplayCounts& o) {
+  intersectRays += o.intersectRays, hits += o.hits;
+  occludedRays += o.occludedRays, blocked += o.blocked;
+  shaded += o.shaded;
+  return *this;
+}
+
+ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count, ReplayHitShader shader,
+                                 const void* user, uint64_t firstIndex) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ReplayCounts c;
@@ -307,7 +315,13 @@ ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count) const {
     if (r.kind == RecordedRay::Kind::Intersect) {
       rtcIntersect1(impl_->top, &ctx, &rh);
       ++c.intersectRays;
-      c.hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      ++c.hits;
+      if (!shader) continue;
+      const ReplayHit hit{rh.ray.tfar,      {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
+                          rh.hit.instID[0], rh.hit.primID,
+                          rh.hit.u,         rh.hit.v};
+      c.shaded += shader(user, r, hit, firstIndex + i);
     } else {
       rtcOccluded1(impl_->top, &ctx, &rh.ray);
       ++c.occludedRays;
@@ -360,22 +374,16 @@ void EmbreeScene::updateMeshVertices(const std::vector<int>& meshes) {
   }
 }
 
-ReplayCounts EmbreeScene::replayParallel(const std::vector<RecordedRay>& rays) const {
+ReplayCounts EmbreeScene::replayParallel(const std::vector<RecordedRay>& rays,
+                                         ReplayHitShader shader, const void* user) const {
   constexpr size_t kChunk = 4096;  // ~ the rays of one 16 x 16 tile at 4 spp in cornell
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, rays.size(), kChunk), ReplayCounts{},
       [&](const tbb::blocked_range<size_t>& r, ReplayCounts total) {
         enableFlushToZero();
-        const ReplayCounts n = replay(rays.data() + r.begin(), r.size());
-        total.intersectRays += n.intersectRays, total.hits += n.hits;
-        total.occludedRays += n.occludedRays, total.blocked += n.blocked;
-        return total;
+        return total += replay(rays.data() + r.begin(), r.size(), shader, user, r.begin());
       },
-      [](ReplayCounts a, const ReplayCounts& b) {
-        a.intersectRays += b.intersectRays, a.hits += b.hits;
-        a.occludedRays += b.occludedRays, a.blocked += b.blocked;
-        return a;
-      });
+      [](ReplayCounts a, const ReplayCounts& b) { return a += b; });
 }
 
 void enableFlushToZero() {

@@ -105,7 +105,25 @@ enum class BatchCall : uint8_t { Single, Stream };
 struct ReplayCounts {
   uint64_t intersectRays = 0, hits = 0;
   uint64_t occludedRays = 0, blocked = 0;
+  double shaded = 0.0;  // the sum of what a ReplayHitShader returned
+
+  ReplayCounts& operator+=(const ReplayCounts& o);
 };
+
+// The closest hit of a replayed intersect ray: its distance along the ray, Embree's
+// unnormalised geometric normal (instance space), the instance and triangle, barycentrics.
+struct ReplayHit {
+  float t = 0.0f;
+  glm::vec3 ng{0.0f};
+  uint32_t instance = 0, triangle = 0;
+  float b1 = 0.0f, b2 = 0.0f;
+};
+
+// Work a replay does at each hit (bench/: what the least shading costs next to traversal).
+// 'index' is the ray's position in the replayed array; the return value is summed into
+// ReplayCounts::shaded, so that the work cannot be optimised away. Must be thread-safe.
+using ReplayHitShader = float (*)(const void* user, const RecordedRay& ray, const ReplayHit& hit,
+                                  uint64_t index);
 
 class EmbreeScene {
  public:
@@ -145,10 +163,13 @@ class EmbreeScene {
   // Traces 'count' recorded rays with bare rtcIntersect1 / rtcOccluded1 calls on this
   // scene (same BVHs, same filters), with no recording and no TraceHit conversion: the
   // traversal cost alone. Thread-safe; the caller sets flush-to-zero as tracing threads do.
-  ReplayCounts replay(const RecordedRay* rays, size_t count) const;
+  // 'shader' (optional) runs at every hit of an intersect ray, with 'user'.
+  ReplayCounts replay(const RecordedRay* rays, size_t count, ReplayHitShader shader = nullptr,
+                      const void* user = nullptr, uint64_t firstIndex = 0) const;
   // The same on every thread: chunks of consecutive rays (one pixel's paths, then the next
   // pixel's) stay on one thread, as in the tracer's tiles, so coherence matches the render.
-  ReplayCounts replayParallel(const std::vector<RecordedRay>& rays) const;
+  ReplayCounts replayParallel(const std::vector<RecordedRay>& rays,
+                              ReplayHitShader shader = nullptr, const void* user = nullptr) const;
 
   const EmbreeStats& stats() const { return stats_; }
 

@@ -64,6 +64,38 @@ TEST(RayRecorder, ReplayFindsWhatTheWrappersFind) {
   EXPECT_GT(got.hits, 0u);
 }
 
+// A ReplayHitShader that returns 1 where the replay's hit is intersect()'s for that ray and
+// the index names the ray, 0 elsewhere.
+struct HitCheck {
+  const EmbreeScene& embree;
+  const std::vector<RecordedRay>& rays;
+
+  static float shade(const void* user, const RecordedRay& ray, const ReplayHit& hit,
+                     uint64_t index) {
+    const auto& c = *static_cast<const HitCheck*>(user);
+    const TraceHit th = c.embree.intersect(ray.origin, ray.dir, ray.tnear, ray.tfar);
+    const bool same = th.hit && th.t == hit.t && th.instance == hit.instance &&
+                      th.triangle == hit.triangle && th.b1 == hit.b1 && th.b2 == hit.b2;
+    return same && &ray == &c.rays[index] && hit.ng != glm::vec3(0.0f) ? 1.0f : 0.0f;
+  }
+};
+
+TEST(RayRecorder, TheReplaysHitShaderSeesEachHitOfItsRay) {
+  const Scene scene = makeBuiltinScene("atrium");
+  EmbreeScene embree(scene);
+  RayRecorder recorder;
+  embree.setRecorder(&recorder);
+  render(scene, embree);
+  embree.setRecorder(nullptr);
+  const std::vector<RecordedRay> rays = recorder.take();
+  const HitCheck check{embree, rays};
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+  const ReplayCounts got = embree.replayParallel(rays, HitCheck::shade, &check);
+  EXPECT_GT(got.hits, 0u);
+  EXPECT_EQ(got.shaded, double(got.hits));  // every hit, and only hits, matched (sums of 1s)
+  EXPECT_EQ(got.intersectRays + got.occludedRays, rays.size());
+}
+
 TEST(RayRecorder, CollectsFromEveryThread) {
   const Scene scene = makeBuiltinScene("cornell");
   EmbreeScene embree(scene);
