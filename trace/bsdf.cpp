@@ -160,11 +160,12 @@ glm::vec2 envBrdfApprox(float roughness, float nv) {
 
 }  // namespace
 
-glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
+namespace {
+
+// specularAlbedo at the clamped cosine 'nv', with p's vertex 'v'.
+glm::vec3 specularAlbedoOf(const BsdfVertex& v, const BsdfParams& p, float nv) {
   // The glass lobe's part is its Fresnel split at the macro-surface; the layers add their
   // albedos and filter the base's as "The layers" in bsdf.h do.
-  const float nv = std::clamp(cosThetaO, 0.0f, 1.0f);
-  const BsdfVertex v = prepareBsdf(p, glm::vec3(0.0f, safeSqrt(1.0f - nv * nv), nv));
   const glm::vec2 ab = envBrdfApprox(p.roughness, nv);
   glm::vec3 albedo = v.f0 * ab.x + v.f90 * ab.y;
   if (v.glass > 0.0f) {
@@ -177,6 +178,18 @@ glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
   const glm::vec2 coat = envBrdfApprox(p.clearcoatRoughness, nv);
   return through * ((1.0f - v.sheenMax * sheen) * albedo + sheen * v.sheenColor) +
          glm::vec3(v.coat * (kDielectricF0 * coat.x + coat.y));
+}
+
+}  // namespace
+
+glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO) {
+  const float nv = std::clamp(cosThetaO, 0.0f, 1.0f);
+  return specularAlbedoOf(prepareBsdf(p, glm::vec3(0.0f, safeSqrt(1.0f - nv * nv), nv)), p, nv);
+}
+
+glm::vec3 specularAlbedo(const BsdfVertex& v, const BsdfParams& p, float cosThetaO) {
+  if (v.layered) return specularAlbedo(p, cosThetaO);
+  return specularAlbedoOf(v, p, std::clamp(cosThetaO, 0.0f, 1.0f));
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {

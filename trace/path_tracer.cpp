@@ -241,8 +241,6 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
   }
-  if (p.depth == 0)
-    result.specularAlbedo = specularAlbedo(p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
   const bool splitsHere = !p.split && !seesThrough(p.hit.bsdf);
   if (splitsHere) {
     p.split = true;
@@ -251,6 +249,8 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   }
   const Frame frame = Frame::fromZ(p.hit.shadingNormal);
   const BsdfVertex bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
+  if (p.depth == 0)
+    result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
   VertexRays rays;
   rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, u, shadow);
   result.rays += rays.shadow;

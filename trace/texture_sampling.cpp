@@ -72,8 +72,8 @@ glm::vec4 sampleTexture(const Texture& t, glm::vec2 uv, bool srgb) {
   return glm::mix(top, bottom, fy);
 }
 
-glm::vec4 sampleSlot(const Scene& scene, const TextureRef& ref, glm::vec2 uv0, glm::vec2 uv1,
-                     bool srgb, glm::vec4 fallback) {
+glm::vec4 sampleSlotTexture(const Scene& scene, const TextureRef& ref, glm::vec2 uv0, glm::vec2 uv1,
+                            bool srgb, glm::vec4 fallback) {
   if (!ref.valid() || ref.texture >= int(scene.textures.size())) return fallback;
   const glm::vec2 uv = ref.texCoord == 1 ? uv1 : uv0;
   const glm::vec3 t = ref.transform.matrix() * glm::vec3(uv, 1.0f);
