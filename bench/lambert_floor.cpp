@@ -3,18 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trace/sampling.h"
+
 namespace photovr {
 namespace {
-
-// An orthonormal frame around unit 'n' without a branch on its direction (Duff et al.,
-// "Building an Orthonormal Basis, Revisited", JCGT 2017, listing 3).
-void frameAround(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
 
 // Two numbers in [0, 1) from one 64-bit hash of the ray's index (splitmix64's finaliser).
 glm::vec2 twoNumbers(uint64_t index) {
@@ -44,7 +36,7 @@ float LambertFloor::shade(const void* user, const RecordedRay& ray, const Replay
   glm::vec3 n = glm::normalize(f.normalToWorld_[hit.instance] * hit.ng);
   if (glm::dot(n, ray.dir) > 0.0f) n = -n;
   glm::vec3 t, b;
-  frameAround(n, t, b);
+  orthonormalBasis(n, t, b);  // the tracer's (Duff et al. 2017)
   // Cosine-weighted hemisphere by Malley's method: a uniform disc point lifted.
   const glm::vec2 u = twoNumbers(index);
   const float r = std::sqrt(u.x), phi = 6.28318531f * u.y;

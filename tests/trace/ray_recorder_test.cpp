@@ -39,14 +39,19 @@ TEST(RayRecorder, SeesEveryRayAndChangesNothing) {
   EXPECT_LT(occluded, rays.size());
 }
 
-TEST(RayRecorder, ReplayFindsWhatTheWrappersFind) {
-  const Scene scene = makeBuiltinScene("atrium");  // alpha-mask and back-face filters
-  EmbreeScene embree(scene);
+// The rays a render of 'scene' casts.
+std::vector<RecordedRay> recordedRays(const Scene& scene, EmbreeScene& embree) {
   RayRecorder recorder;
   embree.setRecorder(&recorder);
   render(scene, embree);
   embree.setRecorder(nullptr);
-  const std::vector<RecordedRay> rays = recorder.take();
+  return recorder.take();
+}
+
+TEST(RayRecorder, ReplayFindsWhatTheWrappersFind) {
+  const Scene scene = makeBuiltinScene("atrium");  // alpha-mask and back-face filters
+  EmbreeScene embree(scene);
+  const std::vector<RecordedRay> rays = recordedRays(scene, embree);
   ReplayCounts expected;
   for (const RecordedRay& r : rays)
     if (r.kind == RecordedRay::Kind::Intersect) {
@@ -83,11 +88,7 @@ struct HitCheck {
 TEST(RayRecorder, TheReplaysHitShaderSeesEachHitOfItsRay) {
   const Scene scene = makeBuiltinScene("atrium");
   EmbreeScene embree(scene);
-  RayRecorder recorder;
-  embree.setRecorder(&recorder);
-  render(scene, embree);
-  embree.setRecorder(nullptr);
-  const std::vector<RecordedRay> rays = recorder.take();
+  const std::vector<RecordedRay> rays = recordedRays(scene, embree);
   const HitCheck check{embree, rays};
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
   const ReplayCounts got = embree.replayParallel(rays, HitCheck::shade, &check);
