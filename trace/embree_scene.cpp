@@ -304,6 +304,21 @@ ReplayCounts& ReplayCounts::operator+=(const ReplayCounts& o) {
   return *this;
 }
 
+namespace {
+
+ReplayHit replayHitOf(const RTCRayHit& rh) {
+  ReplayHit h;
+  h.t = rh.ray.tfar;
+  h.ng = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  h.instance = rh.hit.instID[0];
+  h.triangle = rh.hit.primID;
+  h.b1 = rh.hit.u;
+  h.b2 = rh.hit.v;
+  return h;
+}
+
+}  // namespace
+
 ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count, ReplayHitShader shader,
                                  const void* user, uint64_t firstIndex) const {
   RTCIntersectContext ctx;
@@ -318,10 +333,7 @@ ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count, ReplayHi
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       ++c.hits;
       if (!shader) continue;
-      const ReplayHit hit{rh.ray.tfar,      {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
-                          rh.hit.instID[0], rh.hit.primID,
-                          rh.hit.u,         rh.hit.v};
-      c.shaded += shader(user, r, hit, firstIndex + i);
+      c.shaded += shader(user, r, replayHitOf(rh), firstIndex + i);
     } else {
       rtcOccluded1(impl_->top, &ctx, &rh.ray);
       ++c.occludedRays;
