@@ -7,8 +7,10 @@
 // the share of the tracer's time that traversal alone would take; the rest is primary ray
 // setup, surface reconstruction, texture lookups, BSDF and light sampling. "raw nofl"
 // replays the same rays on the scene with every filter removed, pricing the any-hit filters.
-// "floor" replays them with the least shading a tracer does at each hit (LambertFloor):
-// floor/raw is what a tracer that shades as little as that reaches; photovr/raw, what it does.
+// The two floors replay them with the least shading a tracer does at each hit
+// (bench/shading_floor.h): a Lambert toy's, and the same with photovr's own BSDF in its
+// place. floor/raw is what a tracer that shades as little as that reaches; photovr/raw,
+// what it does.
 // Wall-clock numbers on a shared 2-core machine swing by +-30 %; compare runs with
 // `perf stat -e task-clock taskset -c 0 ... --render-only --scene S` (CPU time) instead.
 #include <tbb/global_control.h>
@@ -29,7 +31,7 @@
 #include <vector>
 
 #include "bench/bench_cli.h"
-#include "bench/lambert_floor.h"
+#include "bench/shading_floor.h"
 #include "core/builtin_scenes.h"
 #include "core/huge_pages.h"
 #include "core/camera.h"
@@ -54,8 +56,8 @@ struct Row {
   int threads = 0;
   uint64_t intersectRays = 0, occludedRays = 0;
   double renderSeconds = 0, replaySeconds = 0, replayIntersectSeconds = 0,
-         replayOccludedSeconds = 0, replayUnfilteredSeconds = 0, replayFloorSeconds = 0,
-         buildMs = 0;
+         replayOccludedSeconds = 0, replayUnfilteredSeconds = 0, lambertFloorSeconds = 0,
+         bsdfFloorSeconds = 0, buildMs = 0;
   uint64_t imageHash = 0;  // FNV-1a of the colour buffer: optimisations must keep it
 
   uint64_t rays() const { return intersectRays + occludedRays; }
@@ -64,7 +66,8 @@ struct Row {
   double rawIntersectMrays() const { return intersectRays / replayIntersectSeconds * 1e-6; }
   double rawOccludedMrays() const { return occludedRays / replayOccludedSeconds * 1e-6; }
   double rawUnfilteredMrays() const { return rays() / replayUnfilteredSeconds * 1e-6; }
-  double floorMrays() const { return rays() / replayFloorSeconds * 1e-6; }
+  double lambertFloorMrays() const { return rays() / lambertFloorSeconds * 1e-6; }
+  double bsdfFloorMrays() const { return rays() / bsdfFloorSeconds * 1e-6; }
 };
 
 double seconds(std::chrono::steady_clock::time_point since) {
@@ -110,7 +113,7 @@ struct Replays {
   const EmbreeScene& embree;
   Scene plainScene;
   std::unique_ptr<EmbreeScene> unfiltered;
-  LambertFloor floor;
+  ShadingFloor floor;
 
   Replays(const Scene& scene, const EmbreeScene& e, std::vector<RecordedRay> rays)
       : all(std::move(rays)),
@@ -128,7 +131,7 @@ struct Replays {
 template <typename Render>
 void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
   row.renderSeconds = row.replaySeconds = row.replayIntersectSeconds = row.replayOccludedSeconds =
-      row.replayUnfilteredSeconds = row.replayFloorSeconds = 1e30;
+      row.replayUnfilteredSeconds = row.lambertFloorSeconds = row.bsdfFloorSeconds = 1e30;
   for (int k = 0; k < repeats; ++k) {
     timeBest(row.renderSeconds, render);
     if (r.all.empty()) continue;
@@ -136,8 +139,10 @@ void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
     timeBest(row.replayIntersectSeconds, [&] { r.embree.replayParallel(r.intersect); });
     timeBest(row.replayOccludedSeconds, [&] { r.embree.replayParallel(r.occluded); });
     timeBest(row.replayUnfilteredSeconds, [&] { r.unfiltered->replayParallel(r.all); });
-    timeBest(row.replayFloorSeconds,
-             [&] { r.embree.replayParallel(r.all, LambertFloor::shade, &r.floor); });
+    timeBest(row.lambertFloorSeconds,
+             [&] { r.embree.replayParallel(r.all, ShadingFloor::shadeLambert, &r.floor); });
+    timeBest(row.bsdfFloorSeconds,
+             [&] { r.embree.replayParallel(r.all, ShadingFloor::shadeBsdf, &r.floor); });
   }
 }
 
@@ -173,10 +178,10 @@ Row measure(const std::string& name, const Scene& scene, int threads, const Conf
 }
 
 void printRow(const Row& r) {
-  std::printf("%-8s %3d %9.2f %9.2f %9.2f %9.2f %9.2f %9.2f %7.3f %7.3f %9llu %8.1f %016llx\n",
+  std::printf("%-8s %3d %9.2f %9.2f %9.2f %9.2f %9.2f %7.3f %7.3f %7.3f %9llu %8.1f %016llx\n",
               r.scene.c_str(), r.threads, r.photovrMrays(), r.rawMrays(), r.rawIntersectMrays(),
-              r.rawOccludedMrays(), r.rawUnfilteredMrays(), r.floorMrays(),
-              r.floorMrays() / r.rawMrays(), r.photovrMrays() / r.rawMrays(),
+              r.rawOccludedMrays(), r.rawUnfilteredMrays(), r.lambertFloorMrays() / r.rawMrays(),
+              r.bsdfFloorMrays() / r.rawMrays(), r.photovrMrays() / r.rawMrays(),
               static_cast<unsigned long long>(r.rays()), r.buildMs,
               static_cast<unsigned long long>(r.imageHash));
   std::fflush(stdout);
@@ -187,7 +192,7 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
   out << "scene,threads,rays,intersect_rays,occluded_rays,photovr_mrays_s,raw_mrays_s,"
          "raw_intersect_mrays_s,raw_occluded_mrays_s,raw_unfiltered_mrays_s,ratio,render_ms,replay_"
          "ms,bvh_build_ms,"
-         "image_hash,floor_mrays_s,floor_ratio\n";
+         "image_hash,lambert_floor_mrays_s,bsdf_floor_mrays_s\n";
   for (const Row& r : rows) {
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(r.imageHash));
@@ -195,8 +200,8 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
         << r.occludedRays << ',' << r.photovrMrays() << ',' << r.rawMrays() << ','
         << r.rawIntersectMrays() << ',' << r.rawOccludedMrays() << ',' << r.rawUnfilteredMrays()
         << ',' << r.photovrMrays() / r.rawMrays() << ',' << r.renderSeconds * 1e3 << ','
-        << r.replaySeconds * 1e3 << ',' << r.buildMs << ',' << hash << ',' << r.floorMrays() << ','
-        << r.floorMrays() / r.rawMrays() << '\n';
+        << r.replaySeconds * 1e3 << ',' << r.buildMs << ',' << hash << ',' << r.lambertFloorMrays()
+        << ',' << r.bsdfFloorMrays() << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
@@ -206,7 +211,8 @@ const char* const kUsage =
     "                           [--scene NAME] [--render-only] [--batch stream|single]\n"
     "The tracer against bare rtcIntersect1/rtcOccluded1 on the rays it cast, one eye, per\n"
     "built-in scene, on 1 thread and all; writes bench_trace.csv to --out (out/bench).\n"
-    "floor: the same rays with the least shading per hit (bench/lambert_floor.h).\n"
+    "lamb, bsdf: the same rays with the least shading per hit, Lambert or photovr's BSDF\n"
+    "(bench/shading_floor.h), against raw.\n"
     "--render-only: no recording or replay (for a profiler).\n"
     "--batch: the wavefront tracer's Embree calls, rtcIntersect1M/rtcOccluded1M streams (the\n"
     "default) or one rtcIntersect1/rtcOccluded1 per ray (what Embree 4 keeps).\n";
@@ -233,11 +239,11 @@ int run(const Config& opt) {
       "photovr_bench_trace: one eye %dx%d, %d spp, best of %d; raw = EmbreeScene::replay "
       "(bare rtcIntersect1/rtcOccluded1)\n",
       opt.width, opt.height, opt.spp, opt.repeats);
-  std::printf("%-8s %3s %9s %9s %9s %9s %9s %9s %7s %7s %9s %8s %s\n", "scene", "thr", "photovr",
-              "raw", "raw isec", "raw occl", "raw nofl", "floor", "ratio", "ratio", "rays",
+  std::printf("%-8s %3s %9s %9s %9s %9s %9s %7s %7s %7s %9s %8s %s\n", "scene", "thr", "photovr",
+              "raw", "raw isec", "raw occl", "raw nofl", "floor", "floor", "ratio", "rays",
               "build ms", "image hash");
-  std::printf("%-8s %3s %9s %9s %9s %9s %9s %9s %7s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
-              "Mrays/s", "Mrays/s", "Mrays/s", "fl/raw", "ph/raw");
+  std::printf("%-8s %3s %9s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
+              "Mrays/s", "Mrays/s", "lamb", "bsdf", "ph/raw");
   std::vector<Row> rows;
   for (const std::string& name : builtinSceneNames()) {
     if (!opt.scene.empty() && name != opt.scene) continue;
