@@ -204,12 +204,6 @@ BsdfLobes evalBsdfLobes(const BsdfParams& p, const glm::vec3& wo, const glm::vec
 // needs no lookup table and is smooth in roughness and angle.
 glm::vec3 diffuseAlbedo(const BsdfParams& p);
 glm::vec3 specularAlbedo(const BsdfParams& p, float cosThetaO);
-struct BsdfVertex;
-// The same from 'v', p's BsdfVertex prepared for any outgoing direction: without layers
-// nothing it takes from v depends on that direction, so the tracer's vertex serves and
-// the BSDF is not prepared a second time (~370 instructions a path); with layers, the
-// above.
-glm::vec3 specularAlbedo(const BsdfVertex& v, const BsdfParams& p, float cosThetaO);
 
 // Probability that sampleBsdf picks the specular lobe: its weight estimate lum(F(n.wo))
 // against the diffuse lobe's lum((1 - F(n.wo))(1 - metallic) baseColor). For a white
@@ -288,6 +282,11 @@ struct BsdfVertex {
   float sheenProbability = 0.0f;
 };
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo);
+// specularAlbedo(p, cosThetaO) from 'v', p's BsdfVertex prepared for any outgoing
+// direction: without layers nothing it takes from v depends on that direction, so the
+// tracer's vertex serves and the BSDF is not prepared a second time (~370 instructions a
+// path); with layers it prepares its own.
+glm::vec3 specularAlbedo(const BsdfVertex& v, const BsdfParams& p, float cosThetaO);
 
 // evalBsdfLobes and pdfBsdf of one direction, sharing the half-vector and D(h).
 struct BsdfEval {

@@ -271,6 +271,21 @@ TEST(Bsdf, OneVertexServesEveryDirectionAsTheFreshCallsDo) {
   }
 }
 
+TEST(Bsdf, SpecularAlbedoFromAnyPreparedVertexIsTheFreshOnes) {
+  // The tracer takes the denoiser's specular albedo from the vertex it prepared for the
+  // path's own wo: that must give specularAlbedo(p, cos) to the bit, glass and layers too.
+  Sampler s = testSampler(16);
+  for (int i = 0; i < 2000; ++i) {
+    BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
+    if (i % 4 == 1) p.transmission = s.next();
+    if (i % 4 == 2) p.clearcoat = s.next(), p.clearcoatRoughness = s.next();
+    if (i % 4 == 3) p.sheenColor = glm::vec3(s.next()), p.sheenRoughness = s.next();
+    const glm::vec3 wo = sampleUniformSphere(s.next2());  // below the surface too
+    const float cosThetaO = s.next() * 2.0f - 1.0f;       // not wo's: any direction serves
+    ASSERT_EQ(specularAlbedo(prepareBsdf(p, wo), p, cosThetaO), specularAlbedo(p, cosThetaO));
+  }
+}
+
 TEST(Bsdf, Reciprocal) {
   // f(wo, wi) and f(wi, wo) differ only in the rounding of wo.h vs wi.h inside Fresnel:
   // 1e-5 relative.
