@@ -68,11 +68,22 @@ glm::vec3 EyeCamera::rayDy() const {
 }
 
 glm::vec3 EyeCamera::rayDirection(float px, float py) const {
+  return CameraRays(*this).direction(px, py);
+}
+
+CameraRays::CameraRays(const EyeCamera& camera)
+    : rotation_(glm::mat3_cast(camera.pose.orientation)),
+      fov_(camera.fov),
+      jitter_(camera.jitter),
+      width_(camera.width),
+      height_(camera.height) {}
+
+glm::vec3 CameraRays::direction(float px, float py) const {
   // Composed in eye space, then rotated: the same arithmetic as rayBase + px*dx + py*dy up
   // to rounding; the shaders use the rayBase form, the tracer this one (both float).
-  const glm::vec3 d(-fov.left + px * (fov.left + fov.right) / width,
-                    -fov.down + py * (fov.up + fov.down) / height, -1.0f);
-  return glm::normalize(glm::mat3_cast(pose.orientation) * d);
+  const glm::vec3 d(-fov_.left + px * (fov_.left + fov_.right) / width_,
+                    -fov_.down + py * (fov_.up + fov_.down) / height_, -1.0f);
+  return glm::normalize(rotation_ * d);
 }
 
 glm::mat4 reversedZProjection(const FovTangents& fov, float n, float f) {

@@ -95,6 +95,24 @@ struct EyeCamera {
 
 glm::mat4 reversedZProjection(const FovTangents& fov, float znear, float zfar);
 
+// An EyeCamera's rays with its rotation built once, for loops over an image's pixels
+// (rayDirection builds it from the quaternion at every call, about half of its work).
+class CameraRays {
+ public:
+  explicit CameraRays(const EyeCamera& camera);
+  // camera.rayDirection(px, py) and camera.pixelRay(x, y), bit for bit.
+  glm::vec3 direction(float px, float py) const;
+  glm::vec3 pixelRay(int x, int y) const {
+    return direction(x + 0.5f + jitter_.x, y + 0.5f + jitter_.y);
+  }
+
+ private:
+  glm::mat3 rotation_;
+  FovTangents fov_;
+  glm::vec2 jitter_;
+  int width_, height_;
+};
+
 // Halton (2, 3) point of a frame index, centred on the pixel: each coordinate in [-0.5, 0.5).
 glm::vec2 haltonJitter(uint32_t frameIndex);
 

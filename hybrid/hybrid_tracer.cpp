@@ -34,6 +34,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
       reused{0}, ownBounces{0};
   if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
+  const CameraRays camRays(cam);
   const auto t0 = Clock::now();
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
@@ -45,7 +46,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
             continue;
           }
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-          hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, cam.pixelRay(x, y));
+          hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, camRays.pixelRay(x, y));
           out += hits[i].outside;
         }
         outside += out;
@@ -59,7 +60,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
         thread_local PathBatcher batcher;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-          const glm::vec3 dir = cam.pixelRay(x, y);
+          const glm::vec3 dir = camRays.pixelRay(x, y);
           if (!g.record(i).hit()) {               // background: the environment, untraced
             if (!ctx.settings.skips.skyPixels) {  // ... unless that skip is off
               ++tile.rays;
@@ -78,7 +79,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
                                   ctx.settings.sampler};
           const SurfaceHit& hit = hits[i].surface;
           const glm::vec3 centreRay =  // for findPartner
-              stereo.reuse ? cam.rayDirection(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
+              stereo.reuse ? camRays.direction(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;

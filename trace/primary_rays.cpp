@@ -12,6 +12,7 @@ namespace photovr {
 PrimaryRayStats timePrimaryRays(const Scene& scene, const EmbreeScene& embree,
                                 const EyeCamera& cam) {
   std::atomic<uint64_t> hits{0};
+  const CameraRays camRays(cam);
   const auto t0 = std::chrono::steady_clock::now();
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, 16, 0, cam.width, 16),
                     [&](const tbb::blocked_range2d<int>& r) {
@@ -19,7 +20,7 @@ PrimaryRayStats timePrimaryRays(const Scene& scene, const EmbreeScene& embree,
                       uint64_t local = 0;
                       for (int y = r.rows().begin(); y < r.rows().end(); ++y)
                         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                          const glm::vec3 dir = cam.pixelRay(x, y);
+                          const glm::vec3 dir = camRays.pixelRay(x, y);
                           const TraceHit h = embree.intersect(
                               cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
                           if (!h.hit) continue;

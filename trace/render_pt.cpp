@@ -36,6 +36,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
                Counts& counts) {
   const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
+  const CameraRays camRays(cam);
   thread_local std::vector<BatchRayHit> primary;
   thread_local PathBatcher batcher;
   primary.clear();
@@ -47,7 +48,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         const glm::vec2 p =
             glm::vec2(x + 0.5f, y + 0.5f) + samplePosition(ctx.settings.sampler, c.sampleIndex());
         primary.push_back(
-            {BatchRay::make(cam.pose.position, cam.rayDirection(p.x, p.y), 0.0f, kInfinity)});
+            {BatchRay::make(cam.pose.position, camRays.direction(p.x, p.y), 0.0f, kInfinity)});
       }
   ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall, true);
   counts.traced.rays += primary.size();
@@ -59,7 +60,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       batcher.beginPixel(i);
       bool first = true;
       const glm::vec3 centreRay =  // for findPartner
-          stereo.reuse ? cam.rayDirection(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
+          stereo.reuse ? camRays.direction(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();
