@@ -537,6 +537,13 @@ BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
   return e;
 }
 
+float pdfBsdf(const BsdfVertex& v, const glm::vec3& wi) {
+  if (v.layered || v.glass != 0.0f) return evalBsdfAndPdf(v, wi).pdf;
+  glm::vec3 h;
+  if (!reflectionPair(v, wi, h)) return 0.0f;
+  return pdf(v, wi, ggxD(h, v.alpha));
+}
+
 BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {
   if (!v.layered) return sampleBase(v, u);
   if (!(v.wo.z > 0.0f)) return {};

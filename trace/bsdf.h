@@ -294,6 +294,9 @@ struct BsdfEval {
   float pdf = 0.0f;
 };
 BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi);
+// evalBsdfAndPdf(v, wi).pdf, bit for bit, without the BSDF's value where there is only the
+// metallic-roughness BRDF (no Fresnel, no G1(wi)): the stereo split's left pdf.
+float pdfBsdf(const BsdfVertex& v, const glm::vec3& wi);
 BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u);
 
 }  // namespace photovr

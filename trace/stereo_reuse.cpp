@@ -60,7 +60,7 @@ ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const Bsdf
 
 float ReuseSplit::leftPdf(const glm::vec3& w) const {
   if (!leftCovers(b_, w)) return 0.0f;
-  return evalBsdfAndPdf(vertex_, frame_.toLocal(w)).pdf;
+  return pdfBsdf(vertex_, frame_.toLocal(w));
 }
 
 namespace {
