@@ -72,7 +72,7 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
-void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked);
+void resolveShadow(PathState& path, PathResult& result, const ShadowRay& shadow, bool blocked);
 // False: the path ended (it left the scene, or 'last' was set). 'geometry': the hit's
 // (hitGeometry), when th.hit.
 bool advancePath(const TraceContext& ctx, PathState& path, PathResult& result, const TraceHit& th,

@@ -57,10 +57,34 @@ glm::vec3 transmittance(const Scene& scene, uint32_t medium, float distance) {
   return std::isfinite(distance) ? glm::exp(-sigma * distance) : glm::vec3(0.0f);
 }
 
+// The shadow ray from the hit's offset origin to the light point itself (not along the
+// direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
+// otherwise carry the ray into the light's plane before the shortened end.
+BatchRay shadowRayTo(const SurfaceHit& hit, const LightSample& ls) {
+  const glm::vec3 origin = offsetRayOrigin(hit, ls.direction);
+  glm::vec3 dir = ls.direction;
+  float tfar = ls.distance;
+  if (std::isfinite(ls.distance)) {
+    const glm::vec3 toLight = hit.position + ls.direction * ls.distance - origin;
+    tfar = glm::length(toLight);
+    dir = toLight / tfar;
+    if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
+  }
+  return BatchRay::make(origin, dir, 0.0f, tfar);
+}
+
+// A reused right sample aims its NEE at the left sample's light point (the same numbers);
+// where the left traced that shadow ray, its answer stands for the right's
+// (trace/stereo_reuse.h, "The approximations").
+bool leftShadowAnswers(const PathState& p) {
+  return p.reuse && p.reuse->shadowTraced;
+}
+
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
-// lights with area (Veach 1997 sec. 9.2, power heuristic): the shadow ray and what it adds
-// unblocked, weighted by the throughput and lobe split as they are at this vertex: by the
-// lobes themselves at the denoiser surface ('splitsHere'), by the path's share elsewhere.
+// lights with area (Veach 1997 sec. 9.2, power heuristic): what it adds unblocked and the
+// shadow ray that decides it (none where the left's answers: leftShadowAnswers), weighted
+// by the throughput and lobe split as they are at this vertex: by the lobes themselves at
+// the denoiser surface ('splitsHere'), by the path's share elsewhere.
 bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame,
                  const BsdfVertex& bsdf, bool splitsHere, const VertexNumbers& u,
                  ShadowRay& shadow) {
@@ -77,19 +101,7 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
   const BsdfLobes& f = e.f;
   if (f.total() == glm::vec3(0.0f)) return false;
-  // The shadow ray runs from the offset origin to the light point itself (not along the
-  // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
-  // otherwise carry the ray into the light's plane before the shortened end.
-  const glm::vec3 origin = offsetRayOrigin(p.hit, ls.direction);
-  glm::vec3 shadowDir = ls.direction;
-  float tfar = ls.distance;
-  if (std::isfinite(ls.distance)) {
-    const glm::vec3 toLight = p.hit.position + ls.direction * ls.distance - origin;
-    tfar = glm::length(toLight);
-    shadowDir = toLight / tfar;
-    if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
-  }
-  shadow.ray = BatchRay::make(origin, shadowDir, 0.0f, tfar);
+  if (!leftShadowAnswers(p)) shadow.ray = shadowRayTo(p.hit, ls);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
   glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
   // A light inside the medium the vertex is in is seen through that medium.
@@ -252,7 +264,12 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   if (p.depth == 0)
     result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
   VertexRays rays;
-  rays.shadow = directLight(ctx, p, frame, bsdf, splitsHere, u, shadow);
+  if (directLight(ctx, p, frame, bsdf, splitsHere, u, shadow)) {
+    if (leftShadowAnswers(p))
+      resolveShadow(p, result, shadow, p.reuse->shadowBlocked);
+    else
+      rays.shadow = true;
+  }
   result.rays += rays.shadow;
   std::optional<ReuseSplit> split;
   if (p.reuse) {
@@ -306,7 +323,11 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   return rays;
 }
 
-void resolveShadow(PathResult& result, const ShadowRay& shadow, bool blocked) {
+void resolveShadow(PathState& p, PathResult& result, const ShadowRay& shadow, bool blocked) {
+  if (p.record && p.depth == 0) {
+    p.record->shadowTraced = true;
+    p.record->shadowBlocked = blocked;
+  }
   if (blocked) return;
   result.diffuse += shadow.diffuse;
   result.specular += shadow.specular;
@@ -364,7 +385,7 @@ PathResult continuePath(const TraceContext& ctx, const SurfaceHit& start, const 
     const VertexRays rays = shadeVertex(ctx, path, u, result, shadow, bounce);
     if (rays.shadow) {
       const BatchRay& r = shadow.ray;
-      resolveShadow(result, shadow, ctx.embree.occluded(r.origin, r.dir, r.tnear, r.tfar));
+      resolveShadow(path, result, shadow, ctx.embree.occluded(r.origin, r.dir, r.tnear, r.tfar));
     }
     if (!rays.bounce) break;
     const TraceHit th = ctx.embree.intersect(bounce.origin, bounce.dir, bounce.tnear, bounce.tfar);

@@ -32,14 +32,22 @@
 // (docs/MEASUREMENTS.md, "Stereo path reuse"). Le(x2), the emission the left ray found, is weighted
 // against the right sample's own NEE with the power heuristic of the right vertex's own pdfs, so
 // the two weights sum to one for every direction (unbiased MIS; Veach 1997 sec. 9.2). The right
-// sample's NEE draws the left sample's numbers from its own x1R, with its own shadow ray, so direct
-// light is exact and its noise matches the left eye's.
+// sample's NEE draws the left sample's numbers, so it aims at the left's light point (the light
+// pick and the point on it depend on the numbers alone): from its own x1R, with its own BSDF,
+// cosine and, for a light at a finite distance, its own distance and direction; its noise
+// matches the left eye's.
 //
-// The approximation: the radiance arriving at x1R along w is taken as the radiance arriving
-// at x1L along w. The two points lie within kPartnerPixels footprints of each other, so only
-// what is about that close to the surface (contact, corners) differs; it blurs the incident
-// light by that distance. Measured in tests/trace/stereo_reuse_test.cpp (per-region z-test
-// against the right eye's own paths) and bench/bench_stereo.cpp. Reconnecting to x2 with the
+// The approximations: the radiance arriving at x1R along w is taken as the radiance arriving
+// at x1L along w, and where the left path traced its NEE shadow ray, that ray's answer stands
+// for the right sample's (V(x1R, y) taken as V(x1L, y), y the light point). The two points lie
+// within kPartnerPixels footprints of each other, so only what is about that close to the
+// surface (contact, corners) or to a shadow's edge differs: the incident light is blurred by
+// that distance, and a shadow's edge moves by at most that distance (as the left eye samples
+// it) instead of being traced again. Measured in tests/trace/stereo_reuse_test.cpp (per-region
+// z-test against the right eye's own paths; a sun's shadow edge on a wall: every pixel beyond
+// the edge's the same to the bit, the edge moved by 0.31 pixels where the bound is 2.99) and
+// bench/bench_stereo.cpp. The shadow ray was a sixth of a reused sample's time on spheres
+// (docs/MEASUREMENTS.md, "Stereo path reuse"). Reconnecting to x2 with the
 // area-measure Jacobian instead (exact geometry at x1R) was tried: its Jacobian
 // |cos th2R| |x2 - x1L|^2 / (|cos th2L| |x2 - x1R|^2) spikes where x2 is near x1 or seen at
 // grazing angles, and the right eye's relMSE at equal time came out 1.08x better than off on
@@ -82,6 +90,10 @@ struct FirstBounce {
   // The left path's light sample at x1L if it is a light at infinity, which the right
   // sample's NEE, drawing the same numbers, would sample again to the bit; else invalid.
   LightSample light;
+  // Whether the left path's NEE at x1L traced a shadow ray, and what it found: the right
+  // sample, drawing the same numbers, aims at the same light point (stereo_reuse.h, top).
+  bool shadowTraced = false;
+  bool shadowBlocked = false;
 };
 
 // The left eye's first bounces of one frame, for its right eye.

@@ -39,8 +39,10 @@ void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontS
 void traceShadows(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   const size_t n = s.shadowRays.size();
   ctx.embree.occludedBatch(s.shadowRays.data(), n, ctx.settings.batchCall);
-  for (size_t j = 0; j < n; ++j)
-    resolveShadow(results[s.shadowOwner[j]], s.shadows[j], s.shadowRays[j].blocked());
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t k = s.shadowOwner[j];
+    resolveShadow(s.paths[k], results[k], s.shadows[j], s.shadowRays[j].blocked());
+  }
 }
 
 // Bounce stage: traces the bounce rays, then moves each path to what its ray found; the

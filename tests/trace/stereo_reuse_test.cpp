@@ -109,6 +109,97 @@ TEST(StereoReuse, RightEyeConvergesToItsOwnPathsImage) {
   }
 }
 
+// A sun's shadow edge across a wall (a white wall 3 m ahead, a black screen behind the
+// eyes over x < 0 and a sun slanted 0.3 rad towards +x: the edge falls at x = 1.2 m on the
+// wall) and nothing else, so no light comes back to the wall: a pixel is dark (0) or lit
+// (its view's share of the sun) but for the edge's pixels, whatever the numbers.
+Scene shadowEdgeScene() {
+  Scene s;
+  s.materials.push_back(testing::diffuseMaterial(glm::vec3(0.8f)));
+  Material black = testing::diffuseMaterial(glm::vec3(0.0f));
+  black.specularFactor = 0.0f;  // KHR_materials_specular: F0 = F90 = 0, no specular lobe
+  s.materials.push_back(black);
+  testing::addSquare(s, 20.0f, 0, glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -3.0f}));
+  testing::addSquare(s, 20.0f, 1,  // facing the wall (-Z): single-sided, seen from there
+                     glm::rotate(glm::translate(glm::mat4(1.0f), {-20.0f, 0.0f, 1.0f}), float(M_PI),
+                                 glm::vec3(0, 1, 0)));
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.3f, 0.0f, -1.0f));
+  sun.intensity = 3.0f;
+  s.lights.push_back(sun);
+  return s;
+}
+
+// A reused right sample's NEE aims at its partner's light point, and the left's shadow ray
+// answers for it: the right eye's shadow edge is the left eye's sampling of it, which moves
+// it by at most the partner's distance, kPartnerPixels footprints. Against the right eye's
+// own paths, over 16 frames (the jitter moves the edge's pixels): away from the edge every
+// pixel is the same to float rounding (1e-5 of the lit value: a visibility answer taken
+// from the wrong place, or wrongly, changes a pixel by the whole lit value); along each
+// row the luminance summed over the edge's pixels differs by at most the lit value times
+// kPartnerPixels footprints in pixels: a footprint is the centre pixel's angle times the
+// distance, and on this wall, which faces the eyes, a pixel is 1 / sqrt(1 + tx^2 + ty^2)
+// of that wide, (tx, ty) its ray's tangents (<= the field's, 1.09 and 1.33: 1 / 1.99).
+TEST(StereoReuse, TheLeftsShadowAnswerMovesTheEdgeByAtMostThePartnersDistance) {
+  constexpr int kW = 48, kH = 36, kFrames = 16;
+  const Scene scene = shadowEdgeScene();
+  const EmbreeScene embree(scene);
+  const LightSet lights(scene);
+  const TraceContext ctx{scene, embree, lights, {}};
+  StereoRig rig;
+  StereoPaths paths;
+  std::array<std::vector<double>, 2> mean;
+  std::array<uint64_t, 2> rays{}, reused{};
+  for (int on = 0; on < 2; ++on) {
+    mean[on].assign(size_t(kW) * kH, 0.0);
+    for (int k = 0; k < kFrames; ++k) {
+      const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, uint32_t(k));
+      const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, kW, kH, jitter),
+                                             rig.eye(Eye::Right, kW, kH, jitter)};
+      const auto img = stereoFrame(ctx, eyes, uint32_t(k), on == 1, paths);
+      for (size_t i = 0; i < mean[on].size(); ++i)
+        mean[on][i] += luminance(img[1].color[i]) / kFrames;
+      rays[on] += img[1].rays, reused[on] += img[1].reusedPaths;
+    }
+  }
+  ASSERT_GT(reused[1], uint64_t(kW * kH * kFrames) / 2);
+  EXPECT_LT(rays[1], rays[0]);  // the reused samples traced no shadow ray
+  const double brightest = *std::max_element(mean[0].begin(), mean[0].end());
+  ASSERT_GT(brightest, 0.1);
+  constexpr int kReach = 3;  // columns either side: beyond the edge's pixel and the partner's
+  const FovTangents& fov = rig.leftFov;
+  const double tx = std::max(fov.left, fov.right), ty = std::max(fov.up, fov.down);
+  const double rowBound = brightest * kPartnerPixels * std::sqrt(1.0 + tx * tx + ty * ty);
+  int edgeRows = 0;
+  double worstRow = 0.0;  // in lit pixels
+  for (int y = 0; y < kH; ++y) {
+    double rowDifference = 0.0;
+    bool edgeInRow = false;
+    for (int x = 0; x < kW; ++x) {
+      const size_t i = size_t(y) * kW + size_t(x);
+      rowDifference += mean[1][i] - mean[0][i];
+      bool dark = true, lit = true;  // the own paths' image around this pixel
+      for (int dx = -kReach; dx <= kReach; ++dx) {
+        const double v = mean[0][size_t(y) * kW + size_t(std::clamp(x + dx, 0, kW - 1))];
+        dark = dark && v == 0.0;
+        lit = lit && v > 0.95 * brightest;  // the view changes it by < 1 % over the wall
+      }
+      const bool flat = dark || lit;
+      edgeInRow = edgeInRow || !flat;
+      if (flat) {
+        EXPECT_NEAR(mean[1][i], mean[0][i], 1e-5 * brightest) << "pixel " << x << ", " << y;
+      }
+    }
+    edgeRows += edgeInRow;
+    EXPECT_LE(std::abs(rowDifference), rowBound) << "row " << y;
+    worstRow = std::max(worstRow, std::abs(rowDifference) / brightest);
+  }
+  std::printf("  the edge moved by at most %.2f pixels in a row (bound %.2f)\n", worstRow,
+              rowBound / brightest);
+  EXPECT_EQ(edgeRows, kH);  // the edge crosses every row
+}
+
 // The ray through the centre of the pixel of 'cam' whose sample at 'offset' sees 'point'.
 glm::vec3 centreRayOf(const EyeCamera& cam, const glm::vec3& point, glm::vec2 offset) {
   const glm::mat3 toWindow = glm::inverse(glm::mat3(cam.rayDx(), cam.rayDy(), cam.rayBase()));
