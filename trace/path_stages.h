@@ -72,6 +72,8 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
+// The shadow ray's answer: adds what it carries if unblocked; a recording left path keeps
+// its first vertex's answer for the right eye (FirstBounce::shadowBlocked).
 void resolveShadow(PathState& path, PathResult& result, const ShadowRay& shadow, bool blocked);
 // False: the path ended (it left the scene, or 'last' was set). 'geometry': the hit's
 // (hitGeometry), when th.hit.

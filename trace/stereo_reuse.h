@@ -91,7 +91,8 @@ struct FirstBounce {
   // sample's NEE, drawing the same numbers, would sample again to the bit; else invalid.
   LightSample light;
   // Whether the left path's NEE at x1L traced a shadow ray, and what it found: the right
-  // sample, drawing the same numbers, aims at the same light point (stereo_reuse.h, top).
+  // sample, drawing the same numbers, aims at the same light point, and this answer stands
+  // for its own (the approximations, at the top of this file).
   bool shadowTraced = false;
   bool shadowBlocked = false;
 };
