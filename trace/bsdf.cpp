@@ -193,7 +193,7 @@ glm::vec3 specularAlbedo(const BsdfVertex& v, const BsdfParams& p, float cosThet
 }
 
 float pdfBsdf(const BsdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  return evalBsdfAndPdf(prepareBsdf(p, wo), wi).pdf;
+  return pdfBsdf(prepareBsdf(p, wo), wi);
 }
 
 namespace {

@@ -286,6 +286,21 @@ TEST(Bsdf, SpecularAlbedoFromAnyPreparedVertexIsTheFreshOnes) {
   }
 }
 
+TEST(Bsdf, PdfAloneIsTheEvaluationsPdf) {
+  // The stereo split reads the pdf without the BSDF's value (pdfBsdf): it must be
+  // evalBsdfAndPdf's pdf to the bit, for any direction, glass and layers too.
+  Sampler s = testSampler(17);
+  for (int i = 0; i < 4000; ++i) {
+    BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
+    if (i % 4 == 1) p.transmission = s.next();
+    if (i % 4 == 2) p.clearcoat = s.next(), p.clearcoatRoughness = s.next();
+    if (i % 4 == 3) p.sheenColor = glm::vec3(s.next()), p.sheenRoughness = s.next();
+    const BsdfVertex v = prepareBsdf(p, sampleUniformSphere(s.next2()));
+    const glm::vec3 wi = sampleUniformSphere(s.next2());
+    ASSERT_EQ(pdfBsdf(v, wi), evalBsdfAndPdf(v, wi).pdf) << i;
+  }
+}
+
 TEST(Bsdf, Reciprocal) {
   // f(wo, wi) and f(wi, wo) differ only in the rounding of wo.h vs wi.h inside Fresnel:
   // 1e-5 relative.
