@@ -397,6 +397,14 @@ BsdfEval evalBase(const BsdfVertex& v, const glm::vec3& wi) {
   return e;
 }
 
+// The BRDF's pdf at s.wi, with the half-vector h and D(h) its value needs; false: no sample.
+bool brdfSamplePdf(const BsdfVertex& v, BsdfSample& s, glm::vec3& h, float& d) {
+  if (!reflectionPair(v, s.wi, h)) return false;
+  d = ggxD(h, v.alpha);
+  s.pdf = pdf(v, s.wi, d);
+  return s.pdf > 0.0f && isFinite(s.pdf);
+}
+
 BsdfSample sampleBase(const BsdfVertex& v, glm::vec2 u) {
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
@@ -414,10 +422,8 @@ BsdfSample sampleBase(const BsdfVertex& v, glm::vec2 u) {
   // sample's pdf is exactly what pdfBsdf() later says about the same direction (MIS).
   if (v.glass == 0.0f) {
     glm::vec3 h;
-    if (!reflectionPair(v, s.wi, h)) return {};
-    const float d = ggxD(h, v.alpha);
-    s.pdf = pdf(v, s.wi, d);
-    if (!(s.pdf > 0.0f) || !isFinite(s.pdf)) return {};
+    float d;
+    if (!brdfSamplePdf(v, s, h, d)) return {};
     s.fDiffuse = diffuse(v, s.wi);
     s.f = specular(v, s.wi, h, d) + s.fDiffuse;
     s.weight = s.f * (s.wi.z / s.pdf);
@@ -542,6 +548,32 @@ float pdfBsdf(const BsdfVertex& v, const glm::vec3& wi) {
   glm::vec3 h;
   if (!reflectionPair(v, wi, h)) return 0.0f;
   return pdf(v, wi, ggxD(h, v.alpha));
+}
+
+BsdfSample sampleBsdfDirection(const BsdfVertex& v, glm::vec2 u) {
+  if (v.layered || v.glass != 0.0f) return sampleBsdf(v, u);
+  if (!(v.wo.z > 0.0f)) return {};
+  BsdfSample s;
+  s.wi = sampleBrdfDirection(v, u, s.specularLobe);
+  glm::vec3 h;
+  float d;
+  return brdfSamplePdf(v, s, h, d) ? s : BsdfSample{};
+}
+
+BsdfVertex prepareBsdfPdf(const BsdfParams& p, const glm::vec3& wo, float specularProbability) {
+  // Exactly zero: prepareBsdf finds no glass and no layers whatever the other parameters.
+  const bool brdfOnly =
+      p.transmission == 0.0f && p.clearcoat == 0.0f && p.sheenColor == glm::vec3(0.0f);
+  BsdfVertex v;
+  if (brdfOnly) {
+    v.wo = wo;
+    v.alpha = roughnessToAlpha(p.roughness);
+    v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);
+  } else {
+    v = prepareBsdf(p, wo);
+  }
+  v.specularProbability = specularProbability;
+  return v;
 }
 
 BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u) {

@@ -298,5 +298,15 @@ BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi);
 // metallic-roughness BRDF (no Fresnel, no G1(wi)): the stereo split's left pdf.
 float pdfBsdf(const BsdfVertex& v, const glm::vec3& wi);
 BsdfSample sampleBsdf(const BsdfVertex& v, glm::vec2 u);
+// sampleBsdf(v, u)'s direction, lobe and pdf, bit for bit, and its validity; f, fDiffuse and
+// the weight only where the BSDF has more than the metallic-roughness BRDF (else 0). For a
+// sample that is kept only if its direction passes a test (the stereo split's own term):
+// the kept one is sampled again, whole, from the same u.
+BsdfSample sampleBsdfDirection(const BsdfVertex& v, glm::vec2 u);
+// A vertex for pdfBsdf alone: pdfBsdf(prepareBsdfPdf(p, wo, s), wi) is, bit for bit, the pdf
+// of prepareBsdf(p, wo) with its specularProbability set to s. Where p is the plain BRDF
+// (no transmission, coat or sheen) it derives only what that pdf reads (alpha, G1(wo) /
+// n.wo); its other fields, and so evalBsdfAndPdf and sampleBsdf of it, are not p's.
+BsdfVertex prepareBsdfPdf(const BsdfParams& p, const glm::vec3& wo, float specularProbability);
 
 }  // namespace photovr

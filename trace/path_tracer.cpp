@@ -281,13 +281,17 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
     p.record->woAbove = bsdf.wo.z > 0.0f;
     p.record->specularProbability = bsdf.specularProbability;
   }
-  const BsdfSample bs = sampleBsdf(bsdf, u.bsdf);
+  // A reused right sample traces its own bounce only where the reused term does not hold
+  // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
+  // BSDF's value only for a direction it keeps.
+  BsdfSample bs = split ? sampleBsdfDirection(bsdf, u.bsdf) : sampleBsdf(bsdf, u.bsdf);
   if (!bs.valid()) return rays;
   const glm::vec3 wi = frame.toWorld(bs.wi);
   if (!sameSide(wi, p.hit, bs.wi)) return rays;
-  // A reused right sample traces its own bounce only where the reused term does not hold
-  // the direction (trace/stereo_reuse.h).
-  if (split && split->reused(wi, bs.pdf)) return rays;
+  if (split) {
+    if (split->reused(wi, bs.pdf)) return rays;
+    bs = sampleBsdf(bsdf, u.bsdf);
+  }
   result.ownBounces += p.reuse != nullptr;
   p.reuse = nullptr;
   if (splitsHere) p.share = diffuseShare(bs);

@@ -54,8 +54,7 @@ ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const Bsdf
            wideAgainstViews(right.bsdf, b.wo, wo);
   if (whole_) return;
   frame_ = Frame::fromZ(b.normal);
-  vertex_ = prepareBsdf(right.bsdf, frame_.toLocal(b.wo));
-  vertex_.specularProbability = b.specularProbability;
+  vertex_ = prepareBsdfPdf(right.bsdf, frame_.toLocal(b.wo), b.specularProbability);
 }
 
 float ReuseSplit::leftPdf(const glm::vec3& w) const {

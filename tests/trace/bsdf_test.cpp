@@ -286,18 +286,60 @@ TEST(Bsdf, SpecularAlbedoFromAnyPreparedVertexIsTheFreshOnes) {
   }
 }
 
+// A random material for the bit-for-bit tests below: every fourth plain, with glass, with
+// a coat, with sheen; roughness over [0, 1), so down to the kMinAlpha floor.
+BsdfParams randomMaterial(Sampler& s, int i) {
+  BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
+  if (i % 4 == 1) p.transmission = s.next();
+  if (i % 4 == 2) p.clearcoat = s.next(), p.clearcoatRoughness = s.next();
+  if (i % 4 == 3) p.sheenColor = glm::vec3(s.next()), p.sheenRoughness = s.next();
+  return p;
+}
+
 TEST(Bsdf, PdfAloneIsTheEvaluationsPdf) {
   // The stereo split reads the pdf without the BSDF's value (pdfBsdf): it must be
   // evalBsdfAndPdf's pdf to the bit, for any direction, glass and layers too.
   Sampler s = testSampler(17);
   for (int i = 0; i < 4000; ++i) {
-    BsdfParams p{glm::vec3(s.next(), s.next(), s.next()), s.next(), s.next()};
-    if (i % 4 == 1) p.transmission = s.next();
-    if (i % 4 == 2) p.clearcoat = s.next(), p.clearcoatRoughness = s.next();
-    if (i % 4 == 3) p.sheenColor = glm::vec3(s.next()), p.sheenRoughness = s.next();
-    const BsdfVertex v = prepareBsdf(p, sampleUniformSphere(s.next2()));
+    const BsdfVertex v = prepareBsdf(randomMaterial(s, i), sampleUniformSphere(s.next2()));
     const glm::vec3 wi = sampleUniformSphere(s.next2());
     ASSERT_EQ(pdfBsdf(v, wi), evalBsdfAndPdf(v, wi).pdf) << i;
+  }
+}
+
+TEST(Bsdf, DirectionFirstIsTheSamplesDirectionAndPdf) {
+  // The stereo split draws its own direction without the BSDF's value and samples again,
+  // whole, only the directions it keeps: the first draw must be the sample's, to the bit.
+  Sampler s = testSampler(23);
+  int valid = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const BsdfParams p = randomMaterial(s, i);
+    const BsdfVertex v = prepareBsdf(p, sampleUniformSphere(s.next2()));
+    const glm::vec2 u = s.next2();
+    const BsdfSample whole = sampleBsdf(v, u), first = sampleBsdfDirection(v, u);
+    ASSERT_EQ(first.valid(), whole.valid()) << i;
+    if (!whole.valid()) continue;
+    ++valid;
+    ASSERT_EQ(first.wi, whole.wi) << i;
+    ASSERT_EQ(first.pdf, whole.pdf) << i;
+    ASSERT_EQ(first.specularLobe, whole.specularLobe) << i;
+  }
+  EXPECT_GT(valid, 1000);  // wo below the horizon half the time: no sample there
+}
+
+TEST(Bsdf, PdfVertexGivesThePreparedVertexsPdf) {
+  // The split's g prepares only what the pdf reads where the BSDF is the plain BRDF: its pdf
+  // must be the whole vertex's (with the lobe choice given), to the bit, glass and layers
+  // (which prepare whole) and NaN parameters too.
+  Sampler s = testSampler(29);
+  for (int i = 0; i < 4000; ++i) {
+    BsdfParams p = randomMaterial(s, i);
+    if (i % 97 == 0) p.roughness = std::numeric_limits<float>::quiet_NaN();
+    const glm::vec3 wo = sampleUniformSphere(s.next2()), wi = sampleUniformSphere(s.next2());
+    const float lobe = s.next();
+    BsdfVertex whole = prepareBsdf(p, wo);
+    whole.specularProbability = lobe;
+    ASSERT_EQ(pdfBsdf(prepareBsdfPdf(p, wo, lobe), wi), pdfBsdf(whole, wi)) << i;
   }
 }
 
