@@ -1,21 +1,31 @@
 #include "trace/path_batcher.h"
 
+#include "trace/path_stages.h"
+
 namespace photovr {
 
 void PathBatcher::beginPixel(size_t pixel) {
   pixels_.push_back({pixel, uint32_t(samples_.size()), 0});
 }
 
-void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
+void PathBatcher::addHit(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
                          const SampleCounters& counters, FirstBounce* record,
                          const FirstBounce* reuse) {
-  samples_.push_back({int32_t(starts_.size()), glm::vec3(0.0f)});
-  starts_.push_back({hit, -dir, counters, record, reuse});
   ++pixels_.back().samples;
+  if (reuse) {
+    PathResult& r = finished_.emplace_back();
+    if (finishReusedSample(ctx, hit, -dir, *reuse, r)) {
+      samples_.push_back({-1, int32_t(finished_.size() - 1), hit.emission});
+      return;
+    }
+    finished_.pop_back();
+  }
+  samples_.push_back({int32_t(starts_.size()), -1, hit.emission});
+  starts_.push_back({hit, -dir, counters, record, reuse});
 }
 
 void PathBatcher::addMiss(const glm::vec3& environment) {
-  samples_.push_back({-1, environment});
+  samples_.push_back({-1, -1, environment});
   ++pixels_.back().samples;
 }
 
@@ -26,20 +36,19 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) 
     PixelEstimate e;
     for (uint32_t j = p.firstSample; j < p.firstSample + p.samples; ++j) {
       const Sample& s = samples_[j];
-      if (s.start < 0) {
-        e.emitted += s.environment;
-        ++e.misses;
-        continue;
-      }
-      const PathStart& start = starts_[size_t(s.start)];
-      addPath(e, start.hit, results_[size_t(s.start)]);
+      if (s.start >= 0)
+        addPath(e, s.seen, results_[size_t(s.start)]);
+      else if (s.finished >= 0)
+        addPath(e, s.seen, finished_[size_t(s.finished)]);
+      else
+        e.emitted += s.seen, ++e.misses;  // a miss
     }
     storePixel(img, p.index, e);
     totals.rays += e.rays;
     totals.rejected += e.rejected;
     totals.ownBounces += e.ownBounces;
   }
-  starts_.clear(), samples_.clear(), pixels_.clear();
+  starts_.clear(), finished_.clear(), samples_.clear(), pixels_.clear();
 }
 
 }  // namespace photovr

@@ -1,6 +1,8 @@
 // Pixels' samples gathered into batches for the wavefront tracer (trace/wavefront.h), then
 // summed back per pixel in sample order, so that a pixel's estimate is the one a loop of
 // continuePath over its samples gives. The pure path tracer and the hybrid both feed it.
+// A reused right sample that needs no ray is finished as it is added (finishReusedSample)
+// and waits for its pixel's sum without a path.
 #pragma once
 
 #include <cstdint>
@@ -13,19 +15,21 @@ namespace photovr {
 
 class PathBatcher {
  public:
-  // Paths per batch: 1024 path states (~190 kB) with their rays stay in L2 while each
-  // stage runs over them, and a 16 x 16 tile at 4 spp is one batch.
+  // Samples per batch, paths and finished ones: 1024 path states (~190 kB) with their rays
+  // stay in L2 while each stage runs over them, and a 16 x 16 tile at 4 spp is one batch.
   static constexpr size_t kBatchPaths = 1024;
 
   // The samples added next belong to pixel 'pixel' of the image, until the next call.
   void beginPixel(size_t pixel);
   // A sample whose primary ray along 'dir' hit 'hit': its path is continued (stereo reuse:
-  // recording its first bounce in 'record', or reusing the left sample 'reuse').
-  void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters,
-              FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
+  // recording its first bounce in 'record', or reusing the left sample 'reuse', finished at
+  // once where it needs no ray).
+  void addHit(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
+              const SampleCounters& counters, FirstBounce* record = nullptr,
+              const FirstBounce* reuse = nullptr);
   // A sample whose primary ray left the scene and saw 'environment'.
   void addMiss(const glm::vec3& environment);
-  bool full() const { return starts_.size() >= kBatchPaths; }
+  bool full() const { return samples_.size() >= kBatchPaths; }
   // What flushed paths add to an image's counters.
   struct Totals {
     uint64_t rays = 0, rejected = 0;
@@ -37,8 +41,9 @@ class PathBatcher {
 
  private:
   struct Sample {
-    int32_t start = -1;  // index into starts_, or -1: a miss
-    glm::vec3 environment{0.0f};
+    int32_t start = -1;     // index into starts_ and results_ ...
+    int32_t finished = -1;  // ... or into finished_; both -1: a miss
+    glm::vec3 seen{0.0f};   // what the primary ray saw itself: emission, or the environment
   };
   struct Pixel {
     size_t index = 0;
@@ -46,6 +51,7 @@ class PathBatcher {
   };
   std::vector<PathStart> starts_;
   std::vector<PathResult> results_;
+  std::vector<PathResult> finished_;  // samples done when added (finishReusedSample)
   std::vector<Sample> samples_;
   std::vector<Pixel> pixels_;
 };

@@ -278,6 +278,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
     if (split->whole()) return rays;
   }
   if (p.depth == 0 && p.record) {
+    p.record->numbers = u;
     p.record->woAbove = bsdf.wo.z > 0.0f;
     p.record->specularProbability = bsdf.specularProbability;
   }
@@ -325,6 +326,17 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   ++result.rays;
   rays.bounce = true;
   return rays;
+}
+
+bool finishReusedSample(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& wo,
+                        const FirstBounce& reuse, PathResult& result) {
+  PathState p = startPath(hit, wo, {}, nullptr, &reuse);
+  ShadowRay shadow;
+  BatchRay bounce;
+  const VertexRays rays = shadeVertex(ctx, p, reuse.numbers, result, shadow, bounce);
+  if (rays.shadow || rays.bounce) return false;
+  finishPath(p, result);
+  return true;
 }
 
 void resolveShadow(PathState& p, PathResult& result, const ShadowRay& shadow, bool blocked) {

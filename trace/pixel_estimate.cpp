@@ -2,11 +2,11 @@
 
 namespace photovr {
 
-void addPath(PixelEstimate& e, const SurfaceHit& hit, const PathResult& r) {
+void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r) {
   e.diffuse += r.diffuse;
   e.specular += r.specular;
   e.albedo += r.albedo;
-  e.emitted += hit.emission;
+  e.emitted += emission;
   e.diffuseAlbedo += glm::max(r.diffuseAlbedo, glm::vec3(kMinDemodulationAlbedo));
   e.specularAlbedo += glm::max(r.specularAlbedo, glm::vec3(kMinDemodulationAlbedo));
   if (e.samples == 0) e.guide = r.guide;

@@ -24,8 +24,9 @@ struct PixelEstimate {
 // so remodulation (radiance = demodulated x stored albedo) is exact (SVGF sec. 4.1).
 constexpr float kMinDemodulationAlbedo = 1e-3f;
 
-// One path continued from 'hit' (its result 'r', which carries its demodulation albedos).
-void addPath(PixelEstimate& e, const SurfaceHit& hit, const PathResult& r);
+// One path continued from a hit whose emission towards the eye is 'emission' (its result
+// 'r', which carries its demodulation albedos).
+void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r);
 
 // Writes colour (the mean over every sample, emission and environment included), the
 // demodulated lobes and their albedos (means over the samples that hit), the albedo AOV and

@@ -65,6 +65,7 @@
 #include "trace/rng.h"
 #include "trace/sampling.h"
 #include "trace/surface.h"
+#include "trace/vertex_numbers.h"
 
 namespace photovr {
 
@@ -87,6 +88,7 @@ struct FirstBounce {
   float environmentPdf = 0.0f;  // ... the environment's NEE density along 'dir' (MIS), if so
   glm::vec3 beyond{0.0f};  // radiance leaving x2 towards x1L without Le(x2), per unit throughput
   PathSampler sampler;     // the left path's numbers: the right sample's NEE draws them too
+  VertexNumbers numbers;   // ... those its first vertex drew, which a reused sample draws again
   // The left path's light sample at x1L if it is a light at infinity, which the right
   // sample's NEE, drawing the same numbers, would sample again to the bit; else invalid.
   LightSample light;

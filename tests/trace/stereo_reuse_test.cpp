@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "tests/trace/image_statistics.h"
 #include "tests/trace/trace_test_util.h"
 #include "trace/path_tracer.h"
+#include "trace/path_stages.h"
 #include "trace/wavefront.h"
 
 namespace photovr {
@@ -367,6 +369,28 @@ struct ReuseCase {
   }
 };
 
+// PathBatcher finishes a reused sample where it is made when it needs no ray
+// (finishReusedSample): its result must be the batched path's to the bit, and it must hand
+// on exactly the samples whose batched paths traced a ray.
+void expectFinishedWhereMadeAsInABatch(const TraceContext& ctx,
+                                       const std::vector<PathStart>& starts,
+                                       const std::vector<PathResult>& batched) {
+  size_t finished = 0, mismatched = 0;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    PathResult lean;
+    const bool done = finishReusedSample(ctx, starts[i].hit, starts[i].wo, *starts[i].reuse, lean);
+    finished += done;
+    const PathResult& b = batched[i];
+    if (done != (b.rays == 0)) ++mismatched;
+    if (done && (std::memcmp(&lean.radiance, &b.radiance, sizeof(glm::vec3)) != 0 ||
+                 std::memcmp(&lean.diffuse, &b.diffuse, sizeof(glm::vec3)) != 0 ||
+                 lean.specularAlbedo != b.specularAlbedo || lean.albedo != b.albedo))
+      ++mismatched;
+  }
+  EXPECT_EQ(mismatched, 0u);
+  EXPECT_GT(finished, 0u);
+}
+
 // One floor point, seen along -wo by the right eye. The left vertex's shading normal is
 // tilted by 'tiltDegrees' about z (as a normal map or a curved surface's neighbour would),
 // and the left eye sees it from 'viewDegrees' away; the right vertex keeps the floor's
@@ -411,6 +435,7 @@ Mean reusedAgainstOwn(const ReuseCase& c, Mean& own) {
   continuePaths(ctx, reusing, results, threadScratch());
   uint32_t ownBounces = 0;
   for (const PathResult& r : results) ownBounces += r.ownBounces;
+  expectFinishedWhereMadeAsInABatch(ctx, reusing, results);
   // Tilted or seen from apart, some reused samples trace the directions the left samples
   // poorly themselves.
   EXPECT_GT(ownBounces, 0u) << c.tiltDegrees << " degrees tilted, " << c.viewDegrees << " apart";

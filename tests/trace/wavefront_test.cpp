@@ -62,7 +62,7 @@ EyeImage scalarReference(const TraceContext& ctx, const EyeCamera& cam, uint32_t
           continue;
         }
         const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
-        addPath(e, hit, continuePath(ctx, hit, -dir, c));
+        addPath(e, hit.emission, continuePath(ctx, hit, -dir, c));
       }
       storePixel(img, i, e);
       img.rays += e.rays + spp;
