@@ -72,7 +72,10 @@ glm::vec3 EyeCamera::rayDirection(float px, float py) const {
 }
 
 CameraRays::CameraRays(const EyeCamera& camera)
-    : rotation_(glm::mat3_cast(camera.pose.orientation)),
+    : base_(camera.rayBase()),
+      dx_(camera.rayDx()),
+      dy_(camera.rayDy()),
+      rotation_(glm::mat3_cast(camera.pose.orientation)),
       fov_(camera.fov),
       jitter_(camera.jitter),
       width_(camera.width),

@@ -105,8 +105,14 @@ class CameraRays {
   glm::vec3 pixelRay(int x, int y) const {
     return direction(x + 0.5f + jitter_.x, y + 0.5f + jitter_.y);
   }
+  // A ray through the centre of pixel (x, y), not unit (the linear ray map,
+  // rayBase + px rayDx + py rayDy): for what needs only the line, not the direction's length.
+  glm::vec3 throughCentre(int x, int y) const {
+    return base_ + (float(x) + 0.5f) * dx_ + (float(y) + 0.5f) * dy_;
+  }
 
  private:
+  glm::vec3 base_, dx_, dy_;
   glm::mat3 rotation_;
   FovTangents fov_;
   glm::vec2 jitter_;

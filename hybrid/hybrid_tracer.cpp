@@ -79,7 +79,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
                                   ctx.settings.sampler};
           const SurfaceHit& hit = hits[i].surface;
           const glm::vec3 centreRay =  // for findPartner
-              stereo.reuse ? camRays.direction(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
+              stereo.reuse ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;

@@ -60,7 +60,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       batcher.beginPixel(i);
       bool first = true;
       const glm::vec3 centreRay =  // for findPartner
-          stereo.reuse ? camRays.direction(x + 0.5f, y + 0.5f) : glm::vec3(0.0f);
+          stereo.reuse ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();

@@ -93,13 +93,12 @@ constexpr float kCentreReach = 8.0f;
 // the offset: the left pixel whose sample, at its centre + the offset as this one's, is
 // nearest x1R. False: behind the left eye.
 bool leftWindowPoint(const StereoPaths& left, const SurfaceHit& hit, const RightSample& right,
-                     float footprint, glm::vec2& window) {
+                     float footprint2, glm::vec2& window) {
   const glm::vec3& n = hit.geometricNormal;
   const float t = glm::dot(hit.position - right.eye, n) / glm::dot(right.centreRay, n);
   const glm::vec3 centre = right.eye + t * right.centreRay;
   const glm::vec3 d = centre - hit.position;
-  const float reach = kCentreReach * footprint;
-  const bool onPlane = t > 0.0f && glm::dot(d, d) <= reach * reach;  // false for NaN
+  const bool onPlane = t > 0.0f && glm::dot(d, d) <= kCentreReach * kCentreReach * footprint2;
   // (px t, py t, t): the linear ray map inverted.
   const glm::vec3 w =
       left.toWindow * ((onPlane ? centre : hit.position) - left.camera.pose.position);
@@ -119,10 +118,11 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
   // between the eyes by its own parallax, not the glass surface's.
   if (hit.bsdf.transmission > 0.0f) return nullptr;
   const glm::vec3 offset = hit.position - left.camera.pose.position;
-  const float footprint = left.pixelAngle * glm::length(offset);
-  const float maxDistance2 = (kPartnerPixels * footprint) * (kPartnerPixels * footprint);
+  // The footprint squared: (pixel angle x distance)^2, no square root.
+  const float footprint2 = left.pixelAngle * left.pixelAngle * glm::dot(offset, offset);
+  const float maxDistance2 = kPartnerPixels * kPartnerPixels * footprint2;
   glm::vec2 window;
-  if (!leftWindowPoint(left, hit, right, footprint, window)) return nullptr;
+  if (!leftWindowPoint(left, hit, right, footprint2, window)) return nullptr;
   const float px = window.x, py = window.y;
   if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
         py < float(left.camera.height)))

@@ -198,7 +198,7 @@ inline StereoRole stereoRoleOf(bool on, int eye, int eyeCount, StereoPaths& path
 
 // A right-eye sample looking for a partner: seen from 'eye' (the right eye's position)
 // through its pixel's centre + 'offset' (the sample's sub-pixel position, the same in both
-// eyes); 'centreRay' is the unit ray through that pixel's centre; 'sample' is its index
+// eyes); 'centreRay' is a ray (of any length) through that pixel's centre; 'sample' is its index
 // among the pixel's samples (the left slot it may reuse).
 struct RightSample {
   glm::vec3 eye{0.0f}, centreRay{0.0f, 0.0f, -1.0f};
