@@ -44,6 +44,18 @@ TEST(EyeCamera, LinearRayFormMatchesNormalisedDirection) {
   EXPECT_NEAR(glm::length(d - e), 0.0f, 1e-6f);  // unit vectors, float rounding
 }
 
+TEST(CameraRays, ThroughCentreIsTheUnjitteredCentreRay) {
+  // The partner search intersects this ray with a plane: it must point through the pixel's
+  // centre (not its jittered sample) whatever its length. Unit vectors, float rounding.
+  const EyeCamera cam = testEye({0.3f, -0.2f});
+  const CameraRays rays(cam);
+  for (glm::ivec2 p : {glm::ivec2(0, 0), glm::ivec2(480, 540), glm::ivec2(959, 1079)}) {
+    const glm::vec3 d = glm::normalize(rays.throughCentre(p.x, p.y));
+    const glm::vec3 e = cam.rayDirection(p.x + 0.5f, p.y + 0.5f);
+    EXPECT_NEAR(glm::length(d - e), 0.0f, 1e-6f) << p.x << ", " << p.y;
+  }
+}
+
 TEST(EyeCamera, ReversedZDepthIsNearOverDistance) {
   EyeCamera cam = testEye({0, 0});
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
