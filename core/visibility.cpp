@@ -22,19 +22,4 @@ glm::vec3 rebuildHitPoint(const Scene& scene, const VisibilityRecord& r) {
   return t.p0 + r.b1 * (t.p1 - t.p0) + r.b2 * (t.p2 - t.p0);
 }
 
-bool intersectTriangle(const glm::vec3& origin, const glm::vec3& dir, const WorldTriangle& tri,
-                       float& t, float& b1, float& b2) {
-  const glm::vec3 e1 = tri.p1 - tri.p0, e2 = tri.p2 - tri.p0;
-  const glm::vec3 pv = glm::cross(dir, e2);
-  const float det = glm::dot(e1, pv);
-  if (det == 0.0f) return false;
-  const float inv = 1.0f / det;
-  const glm::vec3 tv = origin - tri.p0;
-  const glm::vec3 qv = glm::cross(tv, e1);
-  b1 = glm::dot(tv, pv) * inv;
-  b2 = glm::dot(dir, qv) * inv;
-  t = glm::dot(e2, qv) * inv;
-  return true;
-}
-
 }  // namespace photovr

@@ -31,10 +31,4 @@ glm::vec3 rebuildHitPoint(const Scene& scene, const VisibilityRecord& record);
 // True when the record names an existing instance and triangle.
 bool isValidRecord(const Scene& scene, const VisibilityRecord& record);
 
-// Moller-Trumbore (1997) without culling: barycentrics and distance of the ray's hit with
-// the triangle's plane; returns false for a ray parallel to it. The G-buffer shader does the
-// same arithmetic in float.
-bool intersectTriangle(const glm::vec3& origin, const glm::vec3& dir, const WorldTriangle& tri,
-                       float& t, float& b1, float& b2);
-
 }  // namespace photovr

@@ -38,18 +38,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   const auto t0 = Clock::now();
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-        uint64_t out = 0;
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-          const VisibilityRecord rec = g.record(i);
-          if (!rec.hit() || !isValidRecord(ctx.scene, rec)) {
-            hits[i] = RebuiltHit{};
-            continue;
-          }
-          const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-          hits[i] = rebuildPrimaryHit(ctx.scene, rec, cam.pose.position, camRays.pixelRay(x, y));
-          out += hits[i].outside;
-        }
-        outside += out;
+        outside +=
+            rebuildPrimaryHits(ctx.scene, g, camRays, cam.pose.position, r.begin(), r.end(), hits);
       });
   const auto t1 = Clock::now();
   tbb::parallel_for(

@@ -110,6 +110,55 @@ template <typename T>
   return geometryOf(toWorld(c, c.p0), toWorld(c, c.p1), toWorld(c, c.p2), b1, b2);
 }
 
+template <typename T>
+[[gnu::always_inline]] inline V3<T> cross(const V3<T>& a, const V3<T>& b) {  // glm's order
+  return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
+}
+template <typename T>
+[[gnu::always_inline]] inline T dot(const V3<T>& a, const V3<T>& b) {
+  return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+
+template <typename T>
+struct NamedResult {
+  Result<T> geometry;
+  T b1, b2, t;
+  decltype(T{} < T{}) outside;  // bool, or I8's all-ones lanes
+};
+
+// A ray that names its triangle: Moller-Trumbore (1997) without culling, as the G-buffer
+// shader computes it (shaders/gbuffer.frag); where the ray is parallel to the triangle, the
+// named barycentrics (the rasterizer's); barycentrics outside the triangle clamped into it
+// and flagged. Clamping is written without conditions: max(b, 0) and the division by a sum
+// above 1 change nothing inside the triangle, so applying them always gives the bits of
+// applying them only outside (NaN stays NaN either way).
+template <typename T>
+[[gnu::always_inline]] inline NamedResult<T> namedHitOf(const Corners<T>& c, const V3<T>& origin,
+                                                        const V3<T>& dir, const T& b1,
+                                                        const T& b2) {
+  const V3<T> p0 = toWorld(c, c.p0), p1 = toWorld(c, c.p1), p2 = toWorld(c, c.p2);
+  const V3<T> e1 = minus(p1, p0), e2 = minus(p2, p0);
+  const V3<T> pv = cross(dir, e2);
+  const T det = dot(e1, pv);
+  const T inv = 1.0f / det;
+  const V3<T> tv = minus(origin, p0);
+  const V3<T> qv = cross(tv, e1);
+  const auto parallel = det == 0.0f;
+  const T zero = T{} + 0.0f, one = T{} + 1.0f;
+  T u = select(parallel, b1, dot(tv, pv) * inv), v = select(parallel, b2, dot(dir, qv) * inv);
+  NamedResult<T> r;
+  r.outside = parallel | (u < 0.0f) | (v < 0.0f) | (u + v > 1.0f);
+  u = maxOf(u, zero);
+  v = maxOf(v, zero);
+  const T sum = u + v;
+  const auto over = sum > one;
+  r.b1 = select(over, u / sum, u);
+  r.b2 = select(over, v / sum, v);
+  r.geometry = geometryOf(p0, p1, p2, r.b1, r.b2);
+  r.t = dot(minus(r.geometry.position, origin), dir);
+  return r;
+}
+
 V3<float> v3(const glm::vec3& v) {
   return {v.x, v.y, v.z};
 }
@@ -148,6 +197,36 @@ __attribute__((target_clones("avx2", "default"))) void geometryLanes(Lanes8* lan
     lanes[g].result = geometryOf(lanes[g].corners, lanes[g].b1, lanes[g].b2);
 }
 
+struct alignas(32) NamedLanes8 {  // eight named rays, as Lanes8
+  Corners<F8> corners;
+  V3<F8> origin, dir;
+  F8 b1, b2;
+  NamedResult<F8> result;
+};
+static_assert(alignof(NamedLanes8) == 32);
+
+__attribute__((target_clones("avx2", "default"))) void namedHitLanes(NamedLanes8* lanes,
+                                                                     size_t count) {
+  for (size_t g = 0; g < count; ++g) {
+    NamedLanes8& l = lanes[g];
+    l.result = namedHitOf(l.corners, l.origin, l.dir, l.b1, l.b2);
+  }
+}
+
+HitGeometry toHitGeometry(const Result<F8>& r, size_t k) {
+  return {{r.position.x[k], r.position.y[k], r.position.z[k]},
+          r.error[k],
+          {r.ng.x[k], r.ng.y[k], r.ng.z[k]}};
+}
+
+// Writes lane i % 8 of group i / 8 of 'lanes' (21 floats per lane, in Corners' order).
+template <typename Lanes>
+void setCorners(Lanes& lanes, size_t k, const Corners<float>& c) {
+  const float* from = &c.m0.x;
+  float* to = &lanes.corners.m0.x[0];
+  for (size_t j = 0; j < 21; ++j) to[8 * j + k] = from[j];
+}
+
 }  // namespace
 
 HitGeometry hitGeometry(const Scene& scene, const HitRef& hit) {
@@ -166,20 +245,46 @@ void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<H
   for (size_t i = 0; i < groups * 8; ++i) {
     // Lanes past the end repeat the last hit (their results are dropped).
     const HitRef& hit = hits[std::min(i, n - 1)];
-    const Corners<float> c = cornersOf(scene, hit);
-    const float* from = &c.m0.x;
-    float* to = &lanes[i / 8].corners.m0.x[0];
-    for (size_t k = 0; k < 21; ++k) to[8 * k + i % 8] = from[k];
-    lanes[i / 8].b1[i % 8] = hit.b1;
-    lanes[i / 8].b2[i % 8] = hit.b2;
+    Lanes8& l = lanes[i / 8];
+    setCorners(l, i % 8, cornersOf(scene, hit));
+    l.b1[i % 8] = hit.b1;
+    l.b2[i % 8] = hit.b2;
   }
   geometryLanes(lanes.data(), groups);
-  for (size_t i = 0; i < n; ++i) {
-    const Result<F8>& r = lanes[i / 8].result;
+  for (size_t i = 0; i < n; ++i) out[i] = toHitGeometry(lanes[i / 8].result, i % 8);
+}
+
+NamedHit namedHit(const Scene& scene, const glm::vec3& origin, const NamedRay& ray) {
+  const NamedResult<float> r =
+      namedHitOf(cornersOf(scene, ray.hit), v3(origin), v3(ray.direction), ray.hit.b1, ray.hit.b2);
+  return {
+      {ray.hit.instance, ray.hit.triangle, r.b1, r.b2}, toHitGeometry(r.geometry), r.t, r.outside};
+}
+
+void namedHits(const Scene& scene, const glm::vec3& origin, std::span<const NamedRay> rays,
+               std::span<NamedHit> out) {
+  assert(out.size() == rays.size());
+  const size_t n = rays.size(), groups = (n + 7) / 8;
+  thread_local std::vector<NamedLanes8> lanes;
+  lanes.resize(groups);
+  for (size_t i = 0; i < groups * 8; ++i) {
+    const NamedRay& ray = rays[std::min(i, n - 1)];  // as in hitGeometries
+    NamedLanes8& l = lanes[i / 8];
     const size_t k = i % 8;
-    out[i] = {{r.position.x[k], r.position.y[k], r.position.z[k]},
-              r.error[k],
-              {r.ng.x[k], r.ng.y[k], r.ng.z[k]}};
+    setCorners(l, k, cornersOf(scene, ray.hit));
+    l.origin.x[k] = origin.x, l.origin.y[k] = origin.y, l.origin.z[k] = origin.z;
+    l.dir.x[k] = ray.direction.x, l.dir.y[k] = ray.direction.y, l.dir.z[k] = ray.direction.z;
+    l.b1[k] = ray.hit.b1;
+    l.b2[k] = ray.hit.b2;
+  }
+  namedHitLanes(lanes.data(), groups);
+  for (size_t i = 0; i < n; ++i) {
+    const NamedResult<F8>& r = lanes[i / 8].result;
+    const size_t k = i % 8;
+    out[i] = {{rays[i].hit.instance, rays[i].hit.triangle, r.b1[k], r.b2[k]},
+              toHitGeometry(r.geometry, k),
+              r.t[k],
+              r.outside[k] != 0};
   }
 }
 

@@ -38,4 +38,26 @@ HitGeometry hitGeometry(const WorldTriangle& triangle, float b1, float b2);
 // hitGeometry for every hit: out[i] for hits[i]; out.size() == hits.size().
 void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<HitGeometry> out);
 
+// A ray and the triangle it is known to hit: the hybrid's primary hits, whose G-buffer
+// visibility record names the triangle and the rasterizer's barycentrics.
+struct NamedRay {
+  HitRef hit;  // the triangle; its barycentrics are kept where the ray runs parallel to it
+  glm::vec3 direction{0.0f};
+};
+struct NamedHit {
+  HitRef hit;            // barycentrics of the ray's hit, clamped into the triangle
+  HitGeometry geometry;  // hitGeometry(scene, hit), bit for bit
+  float t = 0.0f;        // dot(geometry.position - origin, direction)
+  bool outside = false;  // the ray missed the triangle or ran parallel to it: clamped
+};
+
+// The ray from 'origin' intersected with its named triangle (Moller-Trumbore, 1997, without
+// culling, in world space and float: the G-buffer shader's arithmetic, shaders/gbuffer.frag),
+// barycentrics outside it clamped into it and flagged, so that raster-vs-ray disagreement on
+// a shared edge is counted, not hidden. The record's instance and triangle must exist.
+NamedHit namedHit(const Scene& scene, const glm::vec3& origin, const NamedRay& ray);
+// namedHit for every ray, in SIMD lanes, bit for bit: out[i] for rays[i].
+void namedHits(const Scene& scene, const glm::vec3& origin, std::span<const NamedRay> rays,
+               std::span<NamedHit> out);
+
 }  // namespace photovr

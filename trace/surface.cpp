@@ -46,12 +46,17 @@ glm::vec3 emission(const Scene& scene, const Material& mat, glm::vec2 uv0, glm::
          glm::vec3(sampleSlot(scene, mat.emissiveTexture, uv0, uv1, true, glm::vec4(1.0f)));
 }
 
-// The inverse transpose up to a positive scale (normals are normalised after it): the
-// cofactor matrix, whose columns are cross products of the transform's columns, times the
-// determinant's sign: what glm::inverse computes before its division and transpose.
-glm::mat3 normalMatrix(const glm::mat3& a) {
-  const glm::mat3 cofactor(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
-  return glm::dot(a[0], cofactor[0]) < 0.0f ? -cofactor : cofactor;
+// An object-space normal in world space up to a positive scale (it is normalised after):
+// the inverse transpose of m's upper 3x3 up to its scale is the cofactor matrix, whose
+// columns are cross products of the transform's columns, times the determinant's sign
+// (what glm::inverse computes before its division and transpose). Written on columns, in
+// glm's mat3 * vec3 order, with no glm::mat3 built: its copy through the stack stalled
+// store forwarding for a tenth of surfaceAt's time.
+glm::vec3 normalToWorld(const glm::mat4& m, const glm::vec3& n) {
+  const glm::vec3 a0(m[0]), a1(m[1]), a2(m[2]);
+  glm::vec3 c0 = glm::cross(a1, a2), c1 = glm::cross(a2, a0), c2 = glm::cross(a0, a1);
+  if (glm::dot(a0, c0) < 0.0f) c0 = -c0, c1 = -c1, c2 = -c2;
+  return c0 * n.x + c1 * n.y + c2 * n.z;
 }
 
 glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
@@ -62,9 +67,9 @@ glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
 // Normal map 'map' with its scale in the interpolated tangent frame (glTF 3.9.3), as the
 // G-buffer shader does.
 glm::vec3 applyNormalMap(const Scene& scene, const TextureRef& map, float scale,
-                         const Interpolated& in, const glm::mat3& toWorld, glm::vec3 n) {
+                         const Interpolated& in, const glm::mat4& transform, glm::vec3 n) {
   if (!map.valid() || glm::dot(glm::vec3(in.tangent), glm::vec3(in.tangent)) == 0.0f) return n;
-  const glm::vec3 t0 = safeNormalize(toWorld * glm::vec3(in.tangent), glm::vec3(0.0f));
+  const glm::vec3 t0 = safeNormalize(glm::mat3(transform) * glm::vec3(in.tangent), glm::vec3(0.0f));
   const glm::vec3 t = safeNormalize(t0 - n * glm::dot(n, t0), glm::vec3(0.0f));
   if (t == glm::vec3(0.0f)) return n;
   const glm::vec3 b = glm::cross(n, t) * (in.tangent.w < 0.0f ? -1.0f : 1.0f);
@@ -82,10 +87,10 @@ glm::vec3 applyNormalMap(const Scene& scene, const TextureRef& map, float scale,
 // out of surfaceAt changed nothing beyond noise; the coat normal's 2-3 % cost on scenes
 // without coats is BsdfParams' larger size, docs/MEASUREMENTS.md).
 [[gnu::noinline]] glm::vec3 coatNormalAt(const Scene& scene, const Material& mat,
-                                         const Interpolated& in, const glm::mat3& toWorld,
+                                         const Interpolated& in, const glm::mat4& transform,
                                          const glm::vec3& interpolated, const SurfaceHit& h) {
   glm::vec3 nc = applyNormalMap(scene, mat.clearcoatNormalTexture, mat.clearcoatNormalScale, in,
-                                toWorld, interpolated);
+                                transform, interpolated);
   if (glm::dot(nc, h.geometricNormal) < 0.0f) nc = -nc;
   if (nc == h.shadingNormal) return {0.0f, 0.0f, 1.0f};
   return safeNormalize(Frame::fromZ(h.shadingNormal).toLocal(nc), {0, 0, 1});
@@ -167,17 +172,14 @@ SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g
   const uint32_t* idx = &mesh.indices[3 * size_t(ref.triangle)];
   const glm::mat4& m = inst.transform;
   const Interpolated in = interpolate(mesh, idx, ref.b1, ref.b2);
-  const glm::mat3 normalToWorld = normalMatrix(glm::mat3(m));
-  const glm::vec3 interpolated = safeNormalize(normalToWorld * in.normal, g.ng);
-  glm::vec3 ns =
-      applyNormalMap(scene, mat.normalTexture, mat.normalScale, in, glm::mat3(m), interpolated);
+  const glm::vec3 interpolated = safeNormalize(normalToWorld(m, in.normal), g.ng);
+  glm::vec3 ns = applyNormalMap(scene, mat.normalTexture, mat.normalScale, in, m, interpolated);
   // Shading normal on the viewer's side of the geometry (back faces of double-sided
   // materials shade with the flipped normal, glTF 3.9.6).
   if (glm::dot(ns, h.geometricNormal) < 0.0f) ns = -ns;
   h.shadingNormal = ns;
   h.bsdf = materialAt(scene, mat, in);
-  if (h.bsdf.clearcoat > 0.0f)
-    h.bsdf.coatNormal = coatNormalAt(scene, mat, in, glm::mat3(m), interpolated, h);
+  if (h.bsdf.clearcoat > 0.0f) h.bsdf.coatNormal = coatNormalAt(scene, mat, in, m, interpolated, h);
   // A volume's interface: entering from the front, leaving from the back.
   if (!h.bsdf.thinWalled && !h.frontFace && h.bsdf.eta > 0.0f) h.bsdf.eta = 1.0f / h.bsdf.eta;
   h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);

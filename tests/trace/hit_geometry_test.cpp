@@ -1,6 +1,7 @@
 // The geometry stage (trace/hit_geometry.h): the batch's SIMD lanes give the scalar
 // function's bits, and the scalar function gives the glm code surfaceAt used before it, so
-// that no image changed when the stage came in.
+// that no image changed when the stage came in. The same for named hits (the hybrid's
+// primary hits) against the glm code rebuildPrimaryHit used before them.
 #include "trace/hit_geometry.h"
 
 #include <gtest/gtest.h>
@@ -106,6 +107,120 @@ TEST(HitGeometry, AnEmptyBatchIsNothing) {
   std::vector<HitGeometry> none;
   hitGeometries(scene, {}, none);
   EXPECT_TRUE(none.empty());
+  std::vector<NamedHit> noHits;
+  namedHits(scene, glm::vec3(0.0f), {}, noHits);
+  EXPECT_TRUE(noHits.empty());
+}
+
+// rebuildPrimaryHit as it was written with glm (commit 8d098a3), the reference: Moller-
+// Trumbore with the triangle's world corners, the rasterizer's barycentrics where the ray
+// runs parallel to it, barycentrics outside it clamped into it.
+NamedHit glmNamedHit(const Scene& scene, const glm::vec3& origin, const NamedRay& ray) {
+  const WorldTriangle tri = worldTriangle(scene, ray.hit.instance, ray.hit.triangle);
+  const glm::vec3& dir = ray.direction;
+  NamedHit r;
+  r.hit = ray.hit;
+  float& b1 = r.hit.b1;
+  float& b2 = r.hit.b2;
+  const glm::vec3 e1 = tri.p1 - tri.p0, e2 = tri.p2 - tri.p0;
+  const glm::vec3 pv = glm::cross(dir, e2);
+  const float det = glm::dot(e1, pv);
+  if (det != 0.0f) {
+    const float inv = 1.0f / det;
+    const glm::vec3 tv = origin - tri.p0;
+    const glm::vec3 qv = glm::cross(tv, e1);
+    b1 = glm::dot(tv, pv) * inv;
+    b2 = glm::dot(dir, qv) * inv;
+  } else {
+    r.outside = true;
+  }
+  if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) {
+    r.outside = true;
+    b1 = std::max(b1, 0.0f);
+    b2 = std::max(b2, 0.0f);
+    const float sum = b1 + b2;
+    if (sum > 1.0f) b1 /= sum, b2 /= sum;
+  }
+  r.geometry = glmGeometry(scene, r.hit);
+  r.t = glm::dot(r.geometry.position - origin, dir);
+  return r;
+}
+
+void expectSameBits(const NamedHit& a, const NamedHit& b, size_t i) {
+  EXPECT_EQ(a.hit.b1, b.hit.b1) << i;
+  EXPECT_EQ(a.hit.b2, b.hit.b2) << i;
+  EXPECT_EQ(a.t, b.t) << i;
+  EXPECT_EQ(a.outside, b.outside) << i;
+  expectSameBits(a.geometry, b.geometry, i);
+}
+
+// Rays from 'origin' towards random points of random triangles, bent by up to 'bend' so that
+// some miss their triangle and are clamped.
+std::vector<NamedRay> raysTowards(const Scene& scene, const glm::vec3& origin, float bend,
+                                  size_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<NamedRay> rays;
+  for (const HitRef& h : randomHits(scene, count, seed)) {
+    const glm::vec3 to = glmGeometry(scene, h).position - origin;
+    const glm::vec3 bent = glm::normalize(to) + bend * glm::vec3(u(rng), u(rng), u(rng));
+    rays.push_back({h, glm::normalize(bent)});
+  }
+  return rays;
+}
+
+TEST(HitGeometry, NamedHitsInLanesEqualOneByOneAndTheGlmFormBitForBit) {
+  for (const std::string& name : builtinSceneNames()) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    const glm::vec3 origin(0.31f, 1.57f, 3.9f);
+    const std::vector<NamedRay> rays = raysTowards(scene, origin, 0.02f, 1001, 11);
+    std::vector<NamedHit> batch(rays.size());
+    namedHits(scene, origin, rays, batch);
+    size_t outside = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const NamedHit one = namedHit(scene, origin, rays[i]);
+      expectSameBits(batch[i], one, i);
+      expectSameBits(one, glmNamedHit(scene, origin, rays[i]), i);
+      EXPECT_EQ(one.hit.instance, rays[i].hit.instance);
+      EXPECT_EQ(one.hit.triangle, rays[i].hit.triangle);
+      outside += one.outside;
+    }
+    // Both branches ran: bent rays that missed (clamped) and rays that hit.
+    EXPECT_GT(outside, 0u);
+    EXPECT_LT(outside, rays.size());
+  }
+}
+
+// A ray in the triangle's plane keeps the rasterizer's barycentrics, flagged; one that hits
+// from far away, through a scaled instance, reports the distance and its own barycentrics.
+TEST(HitGeometry, ANamedHitParallelOrFarAgreesWithTheGlmForm) {
+  Scene scene;
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.indices = {0, 1, 2};
+  scene.meshes.push_back(mesh);
+  const glm::mat4 far = glm::mat4(glm::vec4(3e3f, 0, 0, 0), glm::vec4(0, 2e-3f, 0, 0),
+                                  glm::vec4(0, 0, 7.0f, 0), glm::vec4(1e7f, -3e6f, 2e5f, 1));
+  scene.instances.push_back({0, glm::mat4(1.0f), glm::mat4(1.0f), "near"});
+  scene.instances.push_back({0, far, far, "far"});
+  const std::vector<NamedRay> rays = {
+      {{0, 0, 0.2f, 0.3f}, {1, 0, 0}},                                    // in the plane z = 0
+      {{0, 0, 0.2f, 0.3f}, glm::normalize(glm::vec3(0.25f, 0.25f, -1))},  // hits at b = 1/4
+      {{1, 0, 0.2f, 0.3f}, glm::normalize(glm::vec3(1e7f + 600, -3e6f, 2e5f) - glm::vec3(0))}};
+  const glm::vec3 origin(0, 0, 1);
+  std::vector<NamedHit> batch(rays.size());
+  namedHits(scene, origin, rays, batch);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    expectSameBits(batch[i], glmNamedHit(scene, origin, rays[i]), i);
+    expectSameBits(batch[i], namedHit(scene, origin, rays[i]), i);
+  }
+  EXPECT_TRUE(batch[0].outside);
+  EXPECT_EQ(batch[0].hit.b1, 0.2f);
+  EXPECT_EQ(batch[0].hit.b2, 0.3f);
+  EXPECT_FALSE(batch[1].outside);
+  EXPECT_NEAR(batch[1].hit.b1, 0.25f, 1e-6f);  // float rounding of a unit-scale intersection
+  EXPECT_NEAR(batch[1].t, std::sqrt(1.125f), 1e-6f);
 }
 
 }  // namespace
