@@ -7,7 +7,7 @@ namespace photovr {
 namespace {
 
 RebuiltHit fromNamedHit(const Scene& scene, const NamedHit& h, const glm::vec3& direction) {
-  return {surfaceAt(scene, h.hit, h.geometry, direction), h.t, h.outside};
+  return {surfaceAt(scene, h.hit, h.geometry, direction), direction, h.t, h.outside};
 }
 
 }  // namespace
@@ -29,11 +29,12 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
   size_t count = 0;
   for (size_t i = begin; i < end; ++i) {
     const VisibilityRecord rec = g.record(i);
+    const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
     if (!rec.hit() || !isValidRecord(scene, rec)) {
       hits[i] = RebuiltHit{};
+      hits[i].direction = rays.pixelRay(x, y);
       continue;
     }
-    const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
     // Field by field: a whole struct built on the stack and copied stalled on store
     // forwarding (a third of this loop's time in a profile).
     NamedRay& ray = named[count];
@@ -52,7 +53,8 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
     // Built in place (the aggregate's prvalue member is not copied): assigning a returned
     // RebuiltHit copied 160 bytes through the stack.
     ::new (static_cast<void*>(&hits[pixels[k]]))
-        RebuiltHit{surfaceAt(scene, h.hit, h.geometry, named[k].direction), h.t, h.outside};
+        RebuiltHit{surfaceAt(scene, h.hit, h.geometry, named[k].direction), named[k].direction, h.t,
+                   h.outside};
     outside += h.outside;
   }
   return outside;

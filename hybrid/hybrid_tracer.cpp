@@ -50,7 +50,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
         thread_local PathBatcher batcher;
         for (size_t i = r.begin(); i < r.end(); ++i) {
           const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-          const glm::vec3 dir = camRays.pixelRay(x, y);
+          const glm::vec3& dir = hits[i].direction;
           if (!g.record(i).hit()) {               // background: the environment, untraced
             if (!ctx.settings.skips.skyPixels) {  // ... unless that skip is off
               ++tile.rays;

@@ -15,6 +15,7 @@ namespace photovr {
 namespace {
 
 void expectSameBits(const RebuiltHit& a, const RebuiltHit& b, size_t i) {
+  EXPECT_EQ(a.direction, b.direction) << i;
   EXPECT_EQ(a.t, b.t) << i;
   EXPECT_EQ(a.outside, b.outside) << i;
   const SurfaceHit &s = a.surface, &o = b.surface;
@@ -75,10 +76,11 @@ TEST(HitRebuild, BatchesEqualOneByOneBitForBit) {
     uint64_t counted = 0, hits = 0;
     for (size_t i = 0; i < n; ++i) {
       const VisibilityRecord rec = g.record(i);
-      RebuiltHit one;  // RebuiltHit{} where the record saw or names nothing
+      const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
+      RebuiltHit one;  // RebuiltHit{} and its ray where the record saw or names nothing
+      one.direction = cam.pixelRay(x, y);
       if (rec.hit() && isValidRecord(scene, rec)) {
-        const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-        one = rebuildPrimaryHit(scene, rec, cam.pose.position, cam.pixelRay(x, y));
+        one = rebuildPrimaryHit(scene, rec, cam.pose.position, one.direction);
         ++hits;
       }
       expectSameBits(batch[i], one, i);
