@@ -77,8 +77,15 @@ struct alignas(16) BatchRay {
 
   static BatchRay make(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
     BatchRay r;
-    r.origin = origin, r.dir = dir, r.tnear = tnear, r.tfar = tfar;
+    r.set(origin, dir, tnear, tfar);
     return r;
+  }
+  // make(...), written in place: a BatchRay returned and assigned was built on the stack
+  // by scalar stores and copied by 16-byte loads, which stalled on store forwarding (a
+  // third of shadeVertex's time in bench_trace's profile).
+  void set(const glm::vec3& from, const glm::vec3& along, float near, float far) {
+    origin = from, dir = along, tnear = near, tfar = far;
+    time = 0.0f, mask = ~0u, id = 0, flags = 0;
   }
   bool blocked() const { return tfar < 0.0f; }
 };

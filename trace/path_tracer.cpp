@@ -60,7 +60,7 @@ glm::vec3 transmittance(const Scene& scene, uint32_t medium, float distance) {
 // The shadow ray from the hit's offset origin to the light point itself (not along the
 // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
 // otherwise carry the ray into the light's plane before the shortened end.
-BatchRay shadowRayTo(const SurfaceHit& hit, const LightSample& ls) {
+void setShadowRay(BatchRay& ray, const SurfaceHit& hit, const LightSample& ls) {
   const glm::vec3 origin = offsetRayOrigin(hit, ls.direction);
   glm::vec3 dir = ls.direction;
   float tfar = ls.distance;
@@ -70,7 +70,7 @@ BatchRay shadowRayTo(const SurfaceHit& hit, const LightSample& ls) {
     dir = toLight / tfar;
     if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
   }
-  return BatchRay::make(origin, dir, 0.0f, tfar);
+  ray.set(origin, dir, 0.0f, tfar);
 }
 
 // A reused right sample aims its NEE at the left sample's light point (the same numbers);
@@ -101,7 +101,7 @@ bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame
   const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
   const BsdfLobes& f = e.f;
   if (f.total() == glm::vec3(0.0f)) return false;
-  if (!leftShadowAnswers(p)) shadow.ray = shadowRayTo(p.hit, ls);
+  if (!leftShadowAnswers(p)) setShadowRay(shadow.ray, p.hit, ls);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
   glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
   // A light inside the medium the vertex is in is seen through that medium.
@@ -322,7 +322,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   }
   p.wi = wi;
   p.bsdfPdf = bs.pdf;
-  bounce = BatchRay::make(offsetRayOrigin(p.hit, wi), wi, 0.0f, kInfinity);
+  bounce.set(offsetRayOrigin(p.hit, wi), wi, 0.0f, kInfinity);
   ++result.rays;
   rays.bounce = true;
   return rays;

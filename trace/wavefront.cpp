@@ -14,26 +14,29 @@ void drawAll(const TraceContext& ctx, WavefrontScratch& s) {
   drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
 }
 
-// Shading stage: every active path's vertex; queues its shadow and bounce rays.
+// Shading stage: every active path's vertex; queues its shadow and bounce rays. Each is
+// written in place into its queue (dropped again where the vertex made none) and the shadow
+// rays copied into Embree's array after the loop: a ray copied right after the scalar
+// stores that built it stalled on store forwarding.
 void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
   s.bounceRays.clear(), s.bounceOwner.clear();
   drawAll(ctx, s);
   for (size_t j = 0; j < s.active.size(); ++j) {
     const uint32_t k = s.active[j];
-    ShadowRay shadow;
-    BatchRay bounce;
+    ShadowRay& shadow = s.shadows.emplace_back();
+    BatchRay& bounce = s.bounceRays.emplace_back().ray;
     const VertexRays rays = shadeVertex(ctx, s.paths[k], s.numbers[j], results[k], shadow, bounce);
-    if (rays.shadow) {
-      s.shadows.push_back(shadow);
-      s.shadowRays.push_back(shadow.ray);
+    if (rays.shadow)
       s.shadowOwner.push_back(k);
-    }
-    if (rays.bounce) {
-      s.bounceRays.push_back({bounce});
+    else
+      s.shadows.pop_back();
+    if (rays.bounce)
       s.bounceOwner.push_back(k);
-    }
+    else
+      s.bounceRays.pop_back();
   }
+  for (const ShadowRay& shadow : s.shadows) s.shadowRays.push_back(shadow.ray);
 }
 
 void traceShadows(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
@@ -49,12 +52,15 @@ void traceShadows(const TraceContext& ctx, std::span<PathResult> results, Wavefr
 // paths that go on are the next bounce's active set.
 // Geometry stage: every bounce hit's position, error bound and normal in one vectorised pass
 // (trace/hit_geometry.h); s.hitOf[j] indexes bounce ray j's, or is ~0u for a miss.
+// s.found[j] is bounce ray j's answer, kept for advancePath: a TraceHit made on the stack
+// right before the call that reads it stalled on store forwarding there.
 void rebuildGeometry(const TraceContext& ctx, WavefrontScratch& s) {
   const size_t n = s.bounceRays.size();
   s.hits.clear();
   s.hitOf.resize(n);
+  s.found.resize(n);
   for (size_t j = 0; j < n; ++j) {
-    const TraceHit th = s.bounceRays[j].traceHit();
+    const TraceHit& th = s.found[j] = s.bounceRays[j].traceHit();
     s.hitOf[j] = th.hit ? uint32_t(s.hits.size()) : ~0u;
     if (th.hit) s.hits.push_back({th.instance, th.triangle, th.b1, th.b2});
   }
@@ -70,8 +76,7 @@ void traceBounces(const TraceContext& ctx, std::span<PathResult> results, Wavefr
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.bounceOwner[j];
     const HitGeometry& g = s.hitOf[j] == ~0u ? HitGeometry{} : s.geometry[s.hitOf[j]];
-    if (advancePath(ctx, s.paths[k], results[k], s.bounceRays[j].traceHit(), g))
-      s.next.push_back(k);
+    if (advancePath(ctx, s.paths[k], results[k], s.found[j], g)) s.next.push_back(k);
   }
   s.active.swap(s.next);
 }
