@@ -7,7 +7,9 @@
 #include <atomic>
 #include <limits>
 #include <utility>
+#include <vector>
 
+#include "trace/hit_geometry.h"
 #include "trace/path_tracer.h"
 #include "trace/path_batcher.h"
 
@@ -47,11 +49,21 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
                                ctx.settings.sampler};
         const glm::vec2 p =
             glm::vec2(x + 0.5f, y + 0.5f) + samplePosition(ctx.settings.sampler, c.sampleIndex());
-        primary.push_back(
-            {BatchRay::make(cam.pose.position, camRays.direction(p.x, p.y), 0.0f, kInfinity)});
+        // In place: a ray made on the stack and copied stalled on store forwarding.
+        primary.emplace_back().ray.set(cam.pose.position, camRays.direction(p.x, p.y), 0.0f,
+                                       kInfinity);
       }
   ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall, true);
   counts.traced.rays += primary.size();
+  // The hits' geometry in one vectorised pass, as the wavefront tracer's bounce hits.
+  thread_local std::vector<HitRef> hits;
+  thread_local std::vector<HitGeometry> geometry;
+  hits.clear();
+  for (const BatchRayHit& h : primary)
+    if (h.geomID != ~0u) hits.push_back({h.instID, h.primID, h.u, h.v});
+  geometry.resize(hits.size());
+  hitGeometries(ctx.scene, hits, geometry);
+  size_t k = 0;  // the next hit's index in hits and geometry
   size_t j = 0;
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
@@ -68,7 +80,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           batcher.addMiss(ctx.lights.environmentRadiance(dir));
           continue;
         }
-        const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
+        const SurfaceHit hit = surfaceAt(ctx.scene, hits[k], geometry[k], dir);
+        ++k;
         if (first) {
           img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
           img.normal[i] = hit.shadingNormal;
