@@ -1,10 +1,13 @@
 #include "hybrid/hit_rebuild.h"
 
 #include <new>
+#include <type_traits>
 #include <vector>
 
 namespace photovr {
 namespace {
+
+static_assert(std::is_trivially_destructible_v<RebuiltHit>);  // built over in place below
 
 RebuiltHit fromNamedHit(const Scene& scene, const NamedHit& h, const glm::vec3& direction) {
   return {surfaceAt(scene, h.hit, h.geometry, direction), direction, h.t, h.outside};
