@@ -5,21 +5,6 @@
 
 namespace photovr {
 
-Frame Frame::fromZ(const glm::vec3& n) {
-  Frame f;
-  f.z = n;
-  orthonormalBasis(n, f.x, f.y);
-  return f;
-}
-
-void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float b = n.x * n.y * a;
-  b1 = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  b2 = glm::vec3(b, sign + n.y * n.y * a, -n.y);
-}
-
 glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
   const glm::vec2 o = 2.0f * u - 1.0f;
   if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);

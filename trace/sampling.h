@@ -48,19 +48,34 @@ inline int cellIndex(float x, int n) {
   return std::min(int(c), n - 1);
 }
 
+// Duff, Burgess, Christensen, Hery, Kensler, Liani & Villemin, "Building an Orthonormal
+// Basis, Revisited", JCGT 6(1), 2017, listing 3: branchless, accurate for every unit n
+// including n.z = -1 (the case Frisvad's original method gets wrong). Inline, as is
+// Frame::fromZ: every shaded vertex builds frames, and a frame returned from another
+// translation unit through the stack stalled its reader on store forwarding (the caller
+// loads 8 bytes where the callee stored 4; docs/ARCHITECTURE.md, "Structs are written
+// where they are read").
+inline void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  b1 = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  b2 = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
 // A right-handed orthonormal frame with z = the given unit normal.
 struct Frame {
   glm::vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
 
-  static Frame fromZ(const glm::vec3& n);
+  static Frame fromZ(const glm::vec3& n) {
+    Frame f;
+    f.z = n;
+    orthonormalBasis(n, f.x, f.y);
+    return f;
+  }
   glm::vec3 toLocal(const glm::vec3& v) const { return {dot(v, x), dot(v, y), dot(v, z)}; }
   glm::vec3 toWorld(const glm::vec3& v) const { return v.x * x + v.y * y + v.z * z; }
 };
-
-// Duff, Burgess, Christensen, Hery, Kensler, Liani & Villemin, "Building an Orthonormal
-// Basis, Revisited", JCGT 6(1), 2017, listing 3: branchless, accurate for every unit n
-// including n.z = -1 (the case Frisvad's original method gets wrong).
-void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2);
 
 // Concentric map of [0,1)^2 onto the unit disk (Shirley & Chiu, "A Low Distortion Map
 // Between Disk and Square", JGT 2(3), 1997); keeps stratification of u.
