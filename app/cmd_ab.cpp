@@ -215,7 +215,8 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       "speed-up at equal error (wall-clock, from relMSE ~ 1/time): %.2fx\n"
       "4-frame hybrid sequence: sequential %.0f ms; pipelined (PBO read-back, G-buffer of\n"
       "  frame N+1 queued before tracing N) %.0f ms, of which %.0f ms waiting for GL\n"
-      "tracer per eye (ms, left / right), stereo reuse %s: hybrid %.1f / %.1f, pt %.1f / %.1f\n",
+      "tracer per eye (ms, first / second traced; left / right with stereo reuse off), stereo\n"
+      "  reuse %s: hybrid %.1f / %.1f, pt %.1f / %.1f\n",
       r.sceneSpec.c_str(), r.width, r.height, hy.eyes.size(), r.spp, r.frames, r.bounces,
       ref.samplesPerPixel, hy.relMse, hy.psnr, hy.wallMs, hy.cpuMs, hy.rays / hy.wallMs * 1e-3,
       pt.relMse, pt.psnr, pt.wallMs, pt.cpuMs, pt.rays / pt.wallMs * 1e-3, hy.stages.gbufferMs,
@@ -223,8 +224,8 @@ std::string summaryText(const AbRequest& a, const ModeResult& hy, const ModeResu
       (unsigned long long)hy.stages.outsideHits, pt.primaryMs, hy.stages.rebuildMs,
       hy.stages.rebuildMs < pt.primaryMs ? "rebuild is cheaper" : "rebuild is NOT cheaper",
       pt.wallMs / hy.wallMs, pt.cpuMs / hy.cpuMs, equalError, pipe.sequentialMs, pipe.pipelinedMs,
-      pipe.waitMs, r.stereoReuse ? "on" : "off", hy.stages.eyeTraceMs[0], hy.stages.eyeTraceMs[1],
-      pt.stages.eyeTraceMs[0], pt.stages.eyeTraceMs[1]);
+      pipe.waitMs, r.stereoReuse ? "on" : "off", hy.stages.turnTraceMs[0], hy.stages.turnTraceMs[1],
+      pt.stages.turnTraceMs[0], pt.stages.turnTraceMs[1]);
   return buf;
 }
 

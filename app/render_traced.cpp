@@ -101,22 +101,25 @@ void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eye
   std::printf("  %s/denoised.png\n", r.outDir.c_str());
 }
 
-// Both eyes' tracer times (and, with stereo reuse, the right eye's share of reused paths).
+// Both eyes' tracer times: with stereo reuse, that of the eye traced first and of the
+// second, which reuses its paths (the eyes take turns), and the second's share of reused paths.
 std::string eyeTracerLine(const RenderRequest& r, const FrameTimes& t, double n) {
   if (!r.view.stereo) return "";
-  char line[160];
-  std::snprintf(line, sizeof line, "; tracer left %.1f ms, right %.1f ms", t.eyeTraceMs[0] / n,
-                t.eyeTraceMs[1] / n);
-  std::string s = line;
-  if (t.eyeReusedPaths[1] > 0) {
-    std::snprintf(line, sizeof line,
-                  " (stereo reuse: %.1f %% of its paths from the left eye, %.1f %% of those "
-                  "with an own bounce)",
-                  100.0 * double(t.eyeReusedPaths[1]) / double(t.eyePaths[1]),
-                  100.0 * double(t.eyeOwnBounces[1]) / double(t.eyeReusedPaths[1]));
-    s += line;
+  char line[200];
+  if (!r.stereoReuse) {
+    std::snprintf(line, sizeof line, "; tracer left %.1f ms, right %.1f ms", t.turnTraceMs[0] / n,
+                  t.turnTraceMs[1] / n);
+    return line;
   }
-  return s;
+  const double reused = double(t.turnReusedPaths[1]);
+  std::snprintf(line, sizeof line,
+                "; tracer first eye %.1f ms, second %.1f ms (stereo reuse, the eyes taking "
+                "turns: %.1f %% of the second's paths from the first, %.1f %% of those with "
+                "an own bounce)",
+                t.turnTraceMs[0] / n, t.turnTraceMs[1] / n,
+                t.turnPaths[1] ? 100.0 * reused / double(t.turnPaths[1]) : 0.0,
+                reused > 0 ? 100.0 * double(t.turnOwnBounces[1]) / reused : 0.0);
+  return line;
 }
 
 // The stage line of the report, per frame.

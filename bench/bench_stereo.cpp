@@ -1,9 +1,10 @@
 // Stereo path reuse (issue 21, trace/stereo_reuse.h): what the right eye costs and what the
 // frame's time buys, reuse on against off, same run, every built-in scene.
 //
-// 1. Tracer time per eye at 1 spp, 8 bounces (hybrid: rebuild + trace; pt: whole paths),
-//    median of --repeats frames, on and off alternating; the share of right-eye paths that
-//    reused the left's.
+// 1. Tracer time per turn at 1 spp, 8 bounces (hybrid: rebuild + trace; pt: whole paths): of
+//    the eye traced first and of the second, which reuses its paths (with reuse on the eyes
+//    take turns to go first; off: left, right), median of --repeats frames, on and off
+//    alternating; the share of the second eye's paths that reused the first's.
 // 2. Equal-time quality (hybrid): --frames frames with reuse off take a tracer time T; with
 //    reuse on, frames are traced until their tracer time reaches T; --seeds times. Per-eye relMSE
 //    and trimmed relMSE (core/error_metrics.h) of each mean against a converged pt reference
@@ -44,11 +45,14 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct Args {
   std::string out;
   int width = 0, height = 0, repeats = 0, frames = 0, referenceSpp = 0, seeds = 0;
+  bool equalFrames = false;  // reuse on gets off's frames: its error per frame, not per time
 };
 
 struct EyeTimes {
-  std::array<double, 2> ms{};   // median tracer time per eye
-  double reusedShare = 0.0;     // right-eye paths that reused the left's ...
+  // Median tracer time per turn: the eye traced first, then the second, which reuses its
+  // paths (the eyes take turns, stereoTurnsOf); with reuse off, the left eye then the right.
+  std::array<double, 2> ms{};
+  double reusedShare = 0.0;     // the second eye's paths that reused the first's ...
   double ownBounceShare = 0.0;  // ... and of those, the ones that traced an own bounce too
 };
 
@@ -61,6 +65,7 @@ struct Row {
   std::array<double, 2> relMseOff{}, relMseOn{}, trimmedOff{}, trimmedOn{};
   double correlationOff = 0.0, correlationOn = 0.0;
   size_t pairs = 0;
+  bool equalFrames = false;  // Args::equalFrames
 };
 
 View viewOf(const Scene& scene) {
@@ -81,9 +86,9 @@ TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 
   return s;
 }
 
-// Hybrid: per-eye tracer times on and off, alternating frame by frame.
+// Hybrid: tracer times per turn on and off, alternating frame by frame.
 void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
-  std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][eye]
+  std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][turn]
   std::array<uint64_t, 2> paths{}, reused{}, ownBounces{};
   for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of both
     for (int on = 0; on < 2; ++on) {
@@ -92,9 +97,9 @@ void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
       const uint32_t f = uint32_t(std::max(k, 0));
       r.recycle(r.render(eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol), 2, f, &t));
       if (k < 0) continue;
-      for (int e = 0; e < 2; ++e) ms[on][e].push_back(t.eyeTraceMs[e]);
-      paths[on] += t.eyePaths[1], reused[on] += t.eyeReusedPaths[1];
-      ownBounces[on] += t.eyeOwnBounces[1];
+      for (int e = 0; e < 2; ++e) ms[on][e].push_back(t.turnTraceMs[e]);
+      paths[on] += t.turnPaths[1], reused[on] += t.turnReusedPaths[1];
+      ownBounces[on] += t.turnOwnBounces[1];
     }
   for (int e = 0; e < 2; ++e) {
     row.hybridOff.ms[e] = median(ms[0][e]);
@@ -114,13 +119,15 @@ void timePt(const TraceContext& base, const View& view, const Args& a, Row& row)
     for (int on = 0; on < 2; ++on) {
       const uint32_t f = uint32_t(std::max(k, 0));
       const auto eyes = eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol);
-      for (int e = 0; e < 2; ++e) {
+      const StereoTurns turns =
+          stereoTurnsOf(on == 1, 2, f, paths, eyes[0], uint32_t(ctx.settings.samplesPerPixel));
+      for (int turn = 0; turn < 2; ++turn) {
+        const int e = turns.order[turn];
         const auto t0 = Clock::now();
-        const EyeImage img =
-            renderPathTraced(ctx, eyes[e], uint32_t(e), f, {}, stereoRoleOf(on == 1, e, 2, paths));
+        const EyeImage img = renderPathTraced(ctx, eyes[e], uint32_t(e), f, {}, turns.roles[e]);
         if (k < 0) continue;
-        ms[on][e].push_back(msSince(t0));
-        if (on && e == 1) total += img.paths, reused += img.reusedPaths;
+        ms[on][turn].push_back(msSince(t0));
+        if (on && turn == 1) total += img.paths, reused += img.reusedPaths;
       }
     }
   for (int e = 0; e < 2; ++e) {
@@ -238,7 +245,8 @@ void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, con
   for (int k = 0; k < a.seeds; ++k) {
     const uint32_t seed = uint32_t(k + 1);
     const Accumulated off = accumulate(r, view, a, false, a.frames, 0.0, seed);
-    const Accumulated on = accumulate(r, view, a, true, 0, off.tracerMs, seed);
+    const Accumulated on = a.equalFrames ? accumulate(r, view, a, true, a.frames, 0.0, seed)
+                                         : accumulate(r, view, a, true, 0, off.tracerMs, seed);
     row.framesOn += on.frames;
     row.frameMsOff += off.tracerMs / off.frames / a.seeds;
     row.frameMsOn += on.tracerMs / on.frames / a.seeds;
@@ -261,17 +269,18 @@ void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, con
 void print(const Row& r, std::ofstream& csv) {
   const auto ratio = [](const std::array<double, 2>& ms) { return ms[1] / ms[0]; };
   std::printf(
-      "%-8s hybrid tracer ms L/R: off %6.1f/%6.1f, on %6.1f/%6.1f (right/left %.2f, "
-      "reused %.3f, %.3f of those with an own bounce) | pt off %6.1f/%6.1f, on %6.1f/%6.1f "
-      "(right/left %.2f, reused %.3f)\n",
+      "%-8s hybrid tracer ms, first/second eye: off %6.1f/%6.1f, on %6.1f/%6.1f (second/first "
+      "%.2f, reused %.3f, %.3f of those with an own bounce) | pt off %6.1f/%6.1f, on "
+      "%6.1f/%6.1f (second/first %.2f, reused %.3f)\n",
       r.scene.c_str(), r.hybridOff.ms[0], r.hybridOff.ms[1], r.hybridOn.ms[0], r.hybridOn.ms[1],
       ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.hybridOn.ownBounceShare, r.ptOffMs[0],
       r.ptOffMs[1], r.ptOn.ms[0], r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
   std::printf(
-      "         equal time: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
+      "         %s: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
       "%.4f/%.4f, on %.4f/%.4f (off/on %.2f/%.2f); trimmed off/on %.2f/%.2f\n",
-      r.framesOff, r.frameMsOff, r.framesOn, r.frameMsOn, r.relMseOff[0], r.relMseOff[1],
-      r.relMseOn[0], r.relMseOn[1], r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
+      r.equalFrames ? "equal frames" : "equal time", r.framesOff, r.frameMsOff, r.framesOn,
+      r.frameMsOn, r.relMseOff[0], r.relMseOff[1], r.relMseOn[0], r.relMseOn[1],
+      r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
       r.trimmedOff[0] / r.trimmedOn[0], r.trimmedOff[1] / r.trimmedOn[1]);
   std::printf(
       "         noise correlation of the eyes at %zu corresponding pixels: off %.3f, "
@@ -290,12 +299,15 @@ void print(const Row& r, std::ofstream& csv) {
 const char* const kUsage =
     "usage: photovr_bench_stereo [--out DIR] [--width W] [--height H] [--repeats N]\n"
     "                            [--frames F] [--seeds K] [--reference-spp S] [--scene NAME]\n"
+    "                            [--equal-frames]\n"
     "Stereo path reuse on against off on every built-in scene (or --scene), both eyes at\n"
-    "W x H (120x135), 1 spp, 8 bounces: per-eye tracer times (median of N, 7), hybrid and pt;\n"
-    "the share of right-eye paths reused; equal-time per-eye relMSE and trimmed relMSE (F\n"
+    "W x H (120x135), 1 spp, 8 bounces: tracer times of the eye traced first and of the second\n"
+    "(median of N, 7; the eyes take turns), hybrid and pt; the share of the second eye's paths\n"
+    "reused; equal-time per-eye relMSE and trimmed relMSE (F\n"
     "frames off, 32, against as many as fit their tracer time on; means over K seeds, 4)\n"
     "against a pt reference of S spp (1024); the correlation of the eyes' relative noise at "
-    "corresponding pixels.\n"
+    "corresponding pixels. --equal-frames: reuse on gets the F frames off gets (its error per\n"
+    "frame, not per time).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
 int run(const Options& o) {
@@ -306,15 +318,16 @@ int run(const Options& o) {
   a.frames = o.integer("--frames", 32, 2, 100000);
   a.seeds = o.integer("--seeds", 4, 1, 1000);
   a.referenceSpp = o.integer("--reference-spp", 1024, 1, 1 << 20);
+  a.equalFrames = o.has("--equal-frames");
   const std::string only = o.has("--scene") ? builtinSceneArgument(o.text("--scene", "")) : "";
   const std::unique_ptr<gl::Context> gl = gl::Context::createHeadless();
   std::printf("bench_stereo: %dx%d x 2 eyes, 1 spp, 8 bounces; GL: %s\n", a.width, a.height,
               gl->renderer().c_str());
   std::filesystem::create_directories(a.out);
   std::ofstream csv(a.out + "/bench_stereo.csv");
-  csv << "scene,hybrid_off_left_ms,hybrid_off_right_ms,hybrid_on_left_ms,hybrid_on_right_ms,"
-         "hybrid_right_over_left,hybrid_reused_share,hybrid_own_bounce_share,pt_off_left_ms,"
-         "pt_off_right_ms,pt_on_left_ms,pt_on_right_ms,pt_right_over_left,pt_reused_share,"
+  csv << "scene,hybrid_off_first_ms,hybrid_off_second_ms,hybrid_on_first_ms,hybrid_on_second_ms,"
+         "hybrid_second_over_first,hybrid_reused_share,hybrid_own_bounce_share,pt_off_first_ms,"
+         "pt_off_second_ms,pt_on_first_ms,pt_on_second_ms,pt_second_over_first,pt_reused_share,"
          "frames_off,frames_on,relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,"
          "trimmed_off_left,trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
          "correlation_on\n";
@@ -325,6 +338,7 @@ int run(const Options& o) {
     HybridRenderer renderer(scene, a.width, a.height, TraceSettings{});
     Row row;
     row.scene = name;
+    row.equalFrames = a.equalFrames;
     timeHybrid(renderer, view, a, row);
     timePt(renderer.traceContext(), view, a, row);
     measureQuality(renderer, scene, view, a, row);
@@ -342,5 +356,5 @@ int main(int argc, char** argv) {
   return photovr::benchMain(argc, argv, photovr::kUsage,
                             {"--out", "--width", "--height", "--repeats", "--frames",
                              "--reference-spp", "--scene", "--seeds"},
-                            {}, photovr::run);
+                            {"--equal-frames"}, photovr::run);
 }

@@ -139,13 +139,16 @@ void FramePipeline::trace(Job& job) {
   }
   TraceContext ctx = traceContext();
   ctx.settings = settings;
-  for (int e = 0; e < r.eyeCount; ++e) {
+  const StereoTurns turns = stereoTurnsOf(settings.stereoReuse, r.eyeCount, r.index, ptStereo_,
+                                          r.eyes[0], uint32_t(settings.samplesPerPixel));
+  for (int k = 0; k < r.eyeCount; ++k) {
+    const int e = turns.order[k];
     const auto t0 = Clock::now();
     f.images[e] = renderPathTraced(ctx, r.eyes[e], uint32_t(e), r.index, std::move(ptBuffers_[e]),
-                                   stereoRoleOf(settings.stereoReuse, e, r.eyeCount, ptStereo_));
-    f.times.eyeTraceMs[e] = msSince(t0);
-    f.times.traceMs += f.times.eyeTraceMs[e];
-    f.times.addEye(e, f.images[e]);
+                                   turns.roles[e]);
+    f.times.turnTraceMs[k] = msSince(t0);
+    f.times.traceMs += f.times.turnTraceMs[k];
+    f.times.addTurn(k, f.images[e]);
   }
 }
 

@@ -11,22 +11,22 @@ void FrameTimes::add(const FrameTimes& t) {
   gbufferMs += t.gbufferMs, readbackMs += t.readbackMs;
   rebuildMs += t.rebuildMs, traceMs += t.traceMs, refitMs += t.refitMs;
   for (int e = 0; e < 2; ++e) {
-    eyeTraceMs[e] += t.eyeTraceMs[e];
-    eyePaths[e] += t.eyePaths[e];
-    eyeReusedPaths[e] += t.eyeReusedPaths[e];
-    eyeOwnBounces[e] += t.eyeOwnBounces[e];
+    turnTraceMs[e] += t.turnTraceMs[e];
+    turnPaths[e] += t.turnPaths[e];
+    turnReusedPaths[e] += t.turnReusedPaths[e];
+    turnOwnBounces[e] += t.turnOwnBounces[e];
   }
   animateMs += t.animateMs;
   denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
   rays += t.rays, outsideHits += t.outsideHits, rejectedSamples += t.rejectedSamples;
 }
 
-void FrameTimes::addEye(int eye, const EyeImage& image) {
+void FrameTimes::addTurn(int turn, const EyeImage& image) {
   rays += image.rays;
   rejectedSamples += image.rejectedSamples;
-  eyePaths[eye] += image.paths;
-  eyeReusedPaths[eye] += image.reusedPaths;
-  eyeOwnBounces[eye] += image.reusedOwnBounces;
+  turnPaths[turn] += image.paths;
+  turnReusedPaths[turn] += image.reusedPaths;
+  turnOwnBounces[turn] += image.reusedOwnBounces;
 }
 
 HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSettings& settings)
@@ -80,16 +80,18 @@ std::array<EyeImage, 2> HybridRenderer::trace(const std::array<gl::GBufferImage,
     embree_.updateInstanceTransforms();
     t.refitMs += msBetween(t0, Clock::now());
   }
-  for (int e = 0; e < eyeCount; ++e) {
+  const StereoTurns turns = stereoTurnsOf(settings.stereoReuse, eyeCount, frame, stereo_, eyes[0],
+                                          uint32_t(settings.samplesPerPixel));
+  for (int k = 0; k < eyeCount; ++k) {
+    const int e = turns.order[k];
     HybridEyeStats s;
-    out[e] =
-        traceFromGBuffer(ctx, g[e], eyes[e], uint32_t(e), frame, samples[e], &s, &eyeBuffers_[e],
-                         stereoRoleOf(settings.stereoReuse, e, eyeCount, stereo_));
+    out[e] = traceFromGBuffer(ctx, g[e], eyes[e], uint32_t(e), frame, samples[e], &s,
+                              &eyeBuffers_[e], turns.roles[e]);
     t.rebuildMs += s.rebuildMs;
     t.traceMs += s.traceMs;
-    t.eyeTraceMs[e] += s.rebuildMs + s.traceMs;
+    t.turnTraceMs[k] += s.rebuildMs + s.traceMs;
     t.outsideHits += s.outsideHits;
-    t.addEye(e, out[e]);
+    t.addTurn(k, out[e]);
   }
   return out;
 }

@@ -26,19 +26,21 @@ struct FrameTimes {
   double readbackMs = 0.0;  // GL -> CPU copy of the G-buffer layers
   double rebuildMs = 0.0;   // visibility records -> exact hits
   double traceMs = 0.0;     // path continuation (pt: whole paths), both eyes
-  std::array<double, 2> eyeTraceMs{};        // per eye: its rebuild and trace
-  std::array<uint64_t, 2> eyePaths{};        // per eye: paths from primary hits ...
-  std::array<uint64_t, 2> eyeReusedPaths{};  // ... of which reused the left eye's ...
-  std::array<uint64_t, 2> eyeOwnBounces{};   // ... of which traced an own bounce too
-  double refitMs = 0.0;                      // BVH top-level re-commit (only with 'refit' off)
+  // Per turn: [0] the eye traced first, [1] the second, which reuses the first's paths with
+  // stereo reuse on (the eyes take turns, stereoTurnsOf; off: the left eye, then the right).
+  std::array<double, 2> turnTraceMs{};        // its rebuild and trace
+  std::array<uint64_t, 2> turnPaths{};        // paths from primary hits ...
+  std::array<uint64_t, 2> turnReusedPaths{};  // ... of which reused the first eye's ...
+  std::array<uint64_t, 2> turnOwnBounces{};   // ... of which traced an own bounce too
+  double refitMs = 0.0;                       // BVH top-level re-commit (only with 'refit' off)
   double animateMs = 0.0;      // posing an animated scene and updating GL, Embree and lights to it
   double denoiseMs = 0.0;      // FramePipeline's finish: denoiser or upload, wall
   double denoisePassMs = 0.0;  // the denoiser's passes, glFinish-bracketed (timed)
   uint64_t rays = 0, outsideHits = 0, rejectedSamples = 0;
   double cpuMs() const { return refitMs + rebuildMs + traceMs; }  // the tracer's share
   double totalMs() const { return animateMs + gbufferMs + readbackMs + cpuMs(); }
-  void add(const FrameTimes& t);                // sums every field
-  void addEye(int eye, const EyeImage& image);  // its rays, rejected samples and path counts
+  void add(const FrameTimes& t);                  // sums every field
+  void addTurn(int turn, const EyeImage& image);  // its rays, rejected samples and path counts
 };
 
 // The tracer's side of a posed scene: skinned meshes' BVHs refit, the top level re-committed,

@@ -69,14 +69,14 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
                                   ctx.settings.sampler};
           const SurfaceHit& hit = hits[i].surface;
           const glm::vec3 centreRay =  // for findPartner
-              stereo.reuse ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
+              stereo.looksAcross() ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
           for (uint32_t s = 0; s < spp; ++s) {
             counters.sample = s;
             FirstBounce* record = stereo.record ? stereo.record->slot(i, s) : nullptr;
             SampleCounters own = counters;
             const FirstBounce* partner =
-                stereo.reuse
-                    ? partnerOrOwnNumbers(*stereo.reuse, hit,
+                stereo.looksAcross()
+                    ? partnerOrOwnNumbers(stereo, hit,
                                           {cam.pose.position, centreRay, cam.jitter, s}, own)
                     : nullptr;
             tileReused += partner != nullptr;

@@ -72,7 +72,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       batcher.beginPixel(i);
       bool first = true;
       const glm::vec3 centreRay =  // for findPartner
-          stereo.reuse ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
+          stereo.looksAcross() ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();
@@ -91,8 +91,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         SampleCounters counters{uint32_t(i),         eye, frame, s, 0, ctx.settings.seed, spp,
                                 ctx.settings.sampler};
         const FirstBounce* partner =
-            stereo.reuse
-                ? partnerOrOwnNumbers(*stereo.reuse, hit,
+            stereo.looksAcross()
+                ? partnerOrOwnNumbers(stereo, hit,
                                       {cam.pose.position, centreRay,
                                        samplePosition(ctx.settings.sampler, frame * spp + s), s},
                                       counters)

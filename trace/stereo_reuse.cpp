@@ -5,9 +5,17 @@
 
 namespace photovr {
 
-void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
+void EyeWindow::set(const EyeCamera& cam, uint32_t samplesPerPixel) {
   camera = cam;
   stride = samplesPerPixel;
+  const glm::vec3 dx = cam.rayDx(), dy = cam.rayDy(), base = cam.rayBase();
+  toWindow = glm::inverse(glm::mat3(dx, dy, base));
+  const glm::vec3 centre = base + dx * (0.5f * cam.width) + dy * (0.5f * cam.height);
+  pixelAngle = glm::length(dx) / glm::length(centre);
+}
+
+void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
+  set(cam, samplesPerPixel);
   // Resized, not cleared: a slot counts only if this frame's generation stamped it (at
   // 960 x 1080 the slots are ~100 MB, too much to clear per frame).
   const size_t n = size_t(cam.width) * cam.height * stride;
@@ -17,10 +25,20 @@ void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
     std::fill(stamps.begin(), stamps.end(), 0);
     generation = 1;
   }
-  const glm::vec3 dx = cam.rayDx(), dy = cam.rayDy(), base = cam.rayBase();
-  toWindow = glm::inverse(glm::mat3(dx, dy, base));
-  const glm::vec3 centre = base + dx * (0.5f * cam.width) + dy * (0.5f * cam.height);
-  pixelAngle = glm::length(dx) / glm::length(centre);
+}
+
+StereoTurns stereoTurnsOf(bool on, int eyeCount, uint32_t frame, StereoPaths& paths,
+                          const EyeCamera& leftCamera, uint32_t samplesPerPixel) {
+  StereoTurns t;
+  if (!on || eyeCount != 2) return t;
+  if (frame % 2 == 0) {
+    t.roles = {StereoRole{&paths, nullptr, nullptr}, StereoRole{nullptr, &paths, &paths}};
+    return t;
+  }
+  paths.leftEye.set(leftCamera, samplesPerPixel);
+  t.order = {1, 0};
+  t.roles = {StereoRole{nullptr, &paths, nullptr}, StereoRole{&paths, nullptr, &paths.leftEye}};
+  return t;
 }
 
 namespace {
@@ -92,7 +110,7 @@ constexpr float kCentreReach = 8.0f;
 // that point is beyond kCentreReach (the centre ray grazes the plane), x1R's position less
 // the offset: the left pixel whose sample, at its centre + the offset as this one's, is
 // nearest x1R. False: behind the left eye.
-bool leftWindowPoint(const StereoPaths& left, const SurfaceHit& hit, const RightSample& right,
+bool leftWindowPoint(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right,
                      float footprint2, glm::vec2& window) {
   const glm::vec3& n = hit.geometricNormal;
   const float t = glm::dot(hit.position - right.eye, n) / glm::dot(right.centreRay, n);
@@ -107,32 +125,48 @@ bool leftWindowPoint(const StereoPaths& left, const SurfaceHit& hit, const Right
   return true;
 }
 
+// The left pixel (x, y) that stands for the right sample at 'hit', and the left footprint
+// there squared; false: none (glass, a sample the left does not record, behind the left eye,
+// outside its image).
+bool standingPixel(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right, int& x,
+                   int& y, float& footprint2) {
+  if (right.sample >= left.stride) return false;
+  // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
+  // between the eyes by its own parallax, not the glass surface's.
+  if (hit.bsdf.transmission > 0.0f) return false;
+  const glm::vec3 offset = hit.position - left.camera.pose.position;
+  // The footprint squared: (pixel angle x distance)^2, no square root.
+  footprint2 = left.pixelAngle * left.pixelAngle * glm::dot(offset, offset);
+  glm::vec2 window;
+  if (!leftWindowPoint(left, hit, right, footprint2, window)) return false;
+  const float px = window.x, py = window.y;
+  if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
+        py < float(left.camera.height)))
+    return false;
+  x = int(px), y = int(py);
+  return true;
+}
+
 }  // namespace
 
 const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
                                const RightSample& right, uint32_t* leftPixel) {
   if (leftPixel) *leftPixel = kNoLeftPixel;
-  const uint32_t sample = right.sample;
-  if (sample >= left.stride) return nullptr;
-  // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
-  // between the eyes by its own parallax, not the glass surface's.
-  if (hit.bsdf.transmission > 0.0f) return nullptr;
-  const glm::vec3 offset = hit.position - left.camera.pose.position;
-  // The footprint squared: (pixel angle x distance)^2, no square root.
-  const float footprint2 = left.pixelAngle * left.pixelAngle * glm::dot(offset, offset);
-  const float maxDistance2 = kPartnerPixels * kPartnerPixels * footprint2;
-  glm::vec2 window;
-  if (!leftWindowPoint(left, hit, right, footprint2, window)) return nullptr;
-  const float px = window.x, py = window.y;
-  if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
-        py < float(left.camera.height)))
-    return nullptr;
-  const int x = int(px), y = int(py);
+  int x = 0, y = 0;
+  float footprint2 = 0.0f;
+  if (!standingPixel(left, hit, right, x, y, footprint2)) return nullptr;
   if (leftPixel) *leftPixel = uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
   // Where that sample is another surface (an edge, a thin object), none: a neighbour's
   // sample of this surface would give the right pixel another pixel's sequence in those
   // frames, and its own path draws this left pixel's numbers instead (ownPathCounters).
-  return partnerAt(left, x, y, sample, hit, maxDistance2);
+  return partnerAt(left, x, y, right.sample, hit, kPartnerPixels * kPartnerPixels * footprint2);
+}
+
+uint32_t leftPixelOf(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right) {
+  int x = 0, y = 0;
+  float footprint2 = 0.0f;
+  if (!standingPixel(left, hit, right, x, y, footprint2)) return kNoLeftPixel;
+  return uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
 }
 
 }  // namespace photovr

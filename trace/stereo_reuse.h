@@ -54,6 +54,7 @@
 // cornell against 1.75x for this shift (docs/MEASUREMENTS.md, "Stereo path reuse").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -99,15 +100,28 @@ struct FirstBounce {
   bool shadowBlocked = false;
 };
 
-// The left eye's first bounces of one frame, for its right eye.
-struct StereoPaths {
-  EyeCamera camera;          // the left eye's
+// One eye's image as seen from the other: where a point lands in it (the linear ray map
+// inverted) and how many samples per pixel it records.
+struct EyeWindow {
+  EyeCamera camera;
   uint32_t stride = 0;       // slots per pixel: samples [0, stride) of a pixel are recorded
   float pixelAngle = 0.0f;   // angle subtended by one pixel at the image centre (radians)
   glm::mat3 toWindow{1.0f};  // inverse of [rayDx rayDy rayBase]: world offset -> (px, py, 1) * t
+
+  // For a frame of 'camera' with up to 'samplesPerPixel' samples.
+  void set(const EyeCamera& camera, uint32_t samplesPerPixel);
+};
+
+// The first bounces of the eye traced first in a frame, for the other eye (in this file
+// "left" is the eye that records, "right" the one that reuses; the eyes take turns,
+// stereoTurnsOf). Its window is the recording eye's.
+struct StereoPaths : EyeWindow {
   std::vector<FirstBounce> bounces;  // pixel * stride + sample
   std::vector<uint32_t> stamps;      // per slot: the generation that wrote it
   uint32_t generation = 0;           // this frame's
+  // On frames the right eye goes first: the left eye's window, whose pixels' numbers the
+  // right eye's samples draw (ownPathCounters).
+  EyeWindow leftEye;
 
   // Empties every slot for a frame of 'camera' with up to 'samplesPerPixel' samples.
   void reset(const EyeCamera& camera, uint32_t samplesPerPixel);
@@ -183,18 +197,31 @@ constexpr float kPartnerPixels = 1.5f;
 // smooth vertices traced all their paths themselves).
 constexpr float kReuseMinRoughness = 0.1f;
 
-// How one eye's tracer takes part: the left eye records into 'record' (which it resets),
-// the right eye reuses 'reuse'; both null: stereo reuse off.
+// How one eye's tracer takes part: the eye traced first records into 'record' (which it
+// resets), the other reuses 'reuse'; both null: stereo reuse off. 'leftEye': the right eye's
+// window into the left eye's image, whose pixels' numbers its samples draw (the left's
+// records when it reuses them); null for the left eye.
 struct StereoRole {
   StereoPaths* record = nullptr;
   const StereoPaths* reuse = nullptr;
+  const EyeWindow* leftEye = nullptr;
+  // Whether its samples look into the other eye's image (for a partner, or their numbers).
+  bool looksAcross() const { return reuse || leftEye; }
 };
 
-// Eye 'eye' of a frame of 'eyeCount' eyes: its role when stereo reuse is 'on'.
-inline StereoRole stereoRoleOf(bool on, int eye, int eyeCount, StereoPaths& paths) {
-  if (!on || eyeCount != 2) return {};
-  return eye == 0 ? StereoRole{&paths, nullptr} : StereoRole{nullptr, &paths};
-}
+// The eyes of a frame in the order they are traced, and each eye's role.
+struct StereoTurns {
+  std::array<int, 2> order{0, 1};
+  std::array<StereoRole, 2> roles{};  // by eye
+};
+
+// Frame 'frame' of 'eyeCount' eyes (left 'leftCamera') with stereo reuse 'on': the eyes take
+// turns to go first, the left on even frames, so that neither eye always carries what
+// reuse adds to the variance. Whichever eye goes first, the samples of a left pixel and of the
+// right pixels it stands for draw that left pixel's numbers (ownPathCounters), so each pair
+// follows one Sobol sequence over the frames. Off, or one eye: left then right, no roles.
+StereoTurns stereoTurnsOf(bool on, int eyeCount, uint32_t frame, StereoPaths& paths,
+                          const EyeCamera& leftCamera, uint32_t samplesPerPixel);
 
 // A right-eye sample looking for a partner: seen from 'eye' (the right eye's position)
 // through its pixel's centre + 'offset' (the sample's sub-pixel position, the same in both
@@ -214,6 +241,9 @@ constexpr uint32_t kNoLeftPixel = ~0u;
 const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
                                const RightSample& right, uint32_t* leftPixel = nullptr);
 
+// findPartner's left pixel alone, in a window with no records (the right eye goes first).
+uint32_t leftPixelOf(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right);
+
 // The numbers a right sample without a partner draws for its own path: the left eye's at
 // 'leftPixel' (findPartner's), whose sample a right sample of the same pixel reuses in
 // other frames, so that the right pixel keeps one Sobol sequence over the frames (at an
@@ -221,7 +251,7 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
 // own sequence with the left pixel's lost the stratification of both: atrium's right eye
 // had 9.4-10.3 % more variance per sample than its own paths, 8.1-8.5 % with this, and
 // 4.1-4.6 % once findPartner stopped falling back to a neighbour's sample); its own where
-// no left pixel stands for it. (The left eye is eye 0: stereoRoleOf.)
+// no left pixel stands for it. The left eye is eye 0, and its samples draw their own pixel's.
 inline SampleCounters ownPathCounters(SampleCounters own, uint32_t leftPixel) {
   if (leftPixel == kNoLeftPixel) return own;
   own.pixel = leftPixel;
@@ -229,13 +259,19 @@ inline SampleCounters ownPathCounters(SampleCounters own, uint32_t leftPixel) {
   return own;
 }
 
-// A right sample's partner (findPartner), or null with 'counters', the numbers its own path
-// draws, turned to its left pixel's (ownPathCounters).
-inline const FirstBounce* partnerOrOwnNumbers(const StereoPaths& left, const SurfaceHit& hit,
-                                              const RightSample& right, SampleCounters& counters) {
+// A sample's partner in the other eye's records (findPartner), or null with 'counters', the
+// numbers its own path draws: a right sample's turned to its left pixel's (ownPathCounters),
+// whether the right eye reuses or goes first; a left sample's its own.
+inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const SurfaceHit& hit,
+                                              const RightSample& sample, SampleCounters& counters) {
+  const bool right = role.leftEye != nullptr;
   uint32_t leftPixel = kNoLeftPixel;
-  const FirstBounce* partner = findPartner(left, hit, right, &leftPixel);
-  if (!partner) counters = ownPathCounters(counters, leftPixel);
+  const FirstBounce* partner = nullptr;
+  if (role.reuse)
+    partner = findPartner(*role.reuse, hit, sample, right ? &leftPixel : nullptr);
+  else if (right)
+    leftPixel = leftPixelOf(*role.leftEye, hit, sample);
+  if (!partner && right) counters = ownPathCounters(counters, leftPixel);
   return partner;
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,72 +43,120 @@ struct Fixture {
   }
 };
 
-// Both eyes of one pt frame; 'reuse': the right eye reuses the left's paths. 'rightKey':
-// the eye index the right eye's own paths draw their numbers for (1; 0: the left's).
+// Both eyes of one pt frame; 'reuse': the eye traced second reuses the first's paths (the
+// eyes take turns, stereoTurnsOf). 'rightKey': the eye index the right eye's own paths
+// draw their numbers for (1; 0: the left's).
 std::array<EyeImage, 2> stereoFrame(const TraceContext& ctx, const std::array<EyeCamera, 2>& eyes,
                                     uint32_t frame, bool reuse, StereoPaths& paths,
                                     uint32_t rightKey = 1) {
   std::array<EyeImage, 2> out;
-  for (int e = 0; e < 2; ++e)
-    out[e] = renderPathTraced(ctx, eyes[e], e == 0 ? 0 : rightKey, frame, {},
-                              stereoRoleOf(reuse, e, 2, paths));
+  const StereoTurns turns =
+      stereoTurnsOf(reuse, 2, frame, paths, eyes[0], uint32_t(ctx.settings.samplesPerPixel));
+  for (const int e : turns.order)
+    out[e] = renderPathTraced(ctx, eyes[e], e == 0 ? 0 : rightKey, frame, {}, turns.roles[e]);
   return out;
 }
 
-// With both eyes one camera every right sample finds its own primary hit in the
-// left eye: same vertex, same direction (Jacobian 1), same MIS weights, same numbers. The
-// reused right image must then be the left's to float rounding, which checks the recorded
-// radiance beyond x1, the re-weighted emission and the shared light samples term by term
-// (the right eye's own paths, at smooth vertices, draw the left's numbers here too).
+// With both eyes one camera every sample of the eye traced second finds its own primary hit
+// in the first: same vertex, same direction (Jacobian 1), same MIS weights, same numbers.
+// The reused image must then be the first eye's to float rounding, whichever goes first, which
+// checks the recorded radiance beyond x1, the re-weighted emission and the shared light samples
+// term by term (the right eye's own paths, at smooth vertices, draw the left's numbers here too).
 TEST(StereoReuse, EyesAtOnePlaceGiveTheLeftImage) {
+  // Float rounding in the reconnection: the direction renormalised, the radiance divided and
+  // re-multiplied by the throughput (~1e-6 relative), and GGX's D, which the reused term
+  // evaluates at the half vector of the recorded direction where the left's sample weight
+  // used the sampled one. The two half vectors differ by an angle dtheta of a few float
+  // epsilons (a reflection and two normalisations: <= 16 eps), and D changes by at most
+  // 2 dtheta / alpha relative (t = cos^2 + sin^2 / alpha^2 moves by 2 sin dtheta / alpha^2,
+  // largest against t at sin = alpha): 32 eps / kMinAlpha = 9.4e-4 behind a roughness-0
+  // vertex. Spheres' roughness-0 column reached 5.2e-4 over frames 0-9, the other pixels
+  // and scenes 1e-4; a dropped factor or term is off by far more.
+  constexpr float kRounding = 32.0f * std::numeric_limits<float>::epsilon() / kMinAlpha;
   for (const std::string& name : builtinSceneNames()) {
     Fixture f(name);
     f.ctx.settings.samplesPerPixel = 2;
     StereoPaths paths;
-    auto eyes = f.eyes(24, 27, 3);
-    eyes[1] = eyes[0];
-    const auto img = stereoFrame(f.ctx, eyes, 3, true, paths, 0);
-    ASSERT_GT(img[1].reusedPaths, 0u) << name;
-    EXPECT_EQ(img[1].reusedOwnBounces, 0u) << name;  // the same vertex: nothing to split
-    size_t compared = 0;
-    for (size_t i = 0; i < img[0].color.size(); ++i) {
-      // 1e-4 relative + 1e-6: a handful of float roundings in the reconnection (the
-      // direction renormalised, the radiance divided and re-multiplied by the throughput).
-      const glm::vec3 a = img[0].color[i], b = img[1].color[i];
-      for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR(a[k], b[k], 1e-4f * a[k] + 1e-6f) << name << " pixel " << i;
-      ++compared;
+    for (const uint32_t frame :
+         {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u}) {  // the left eye first, then the right
+      auto eyes = f.eyes(24, 27, frame);
+      eyes[1] = eyes[0];
+      const auto img = stereoFrame(f.ctx, eyes, frame, true, paths, 0);
+      const int first = int(frame % 2), second = 1 - first;
+      ASSERT_GT(img[second].reusedPaths, 0u) << name;
+      EXPECT_EQ(img[first].reusedPaths, 0u) << name;
+      EXPECT_EQ(img[second].reusedOwnBounces, 0u) << name;  // the same vertex: nothing to split
+      size_t compared = 0;
+      for (size_t i = 0; i < img[0].color.size(); ++i) {
+        const glm::vec3 a = img[first].color[i], b = img[second].color[i];
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(a[k], b[k], kRounding * a[k] + 1e-6f)
+              << name << " frame " << frame << " pixel " << i;
+        ++compared;
+      }
+      EXPECT_EQ(compared, img[0].color.size());
     }
-    EXPECT_EQ(compared, img[0].color.size());
   }
 }
 
-// Right eye, reuse on against off: the same expected image region by region within Monte
+// On the right eye's turn its paths draw the numbers of the left pixel that stands for each
+// of its pixels, so the left eye, reusing them, keeps its own pixels' sequences. With the
+// eyes at one place that is the same pixel: every path the right eye records on an odd
+// frame carries the left eye's sampler for its pixel and sample (eye 0), and none its own.
+TEST(StereoReuse, OnTheRightEyesTurnItsPathsDrawTheLeftPixelsNumbers) {
+  Fixture f("cornell");  // every pixel a surface: every slot recorded
+  f.ctx.settings.samplesPerPixel = 2;
+  const uint32_t spp = 2, frame = 5;
+  StereoPaths paths;
+  auto eyes = f.eyes(24, 27, frame);
+  eyes[1] = eyes[0];
+  stereoFrame(f.ctx, eyes, frame, true, paths);
+  size_t recorded = 0;
+  for (uint32_t pixel = 0; pixel < 24 * 27; ++pixel)
+    for (uint32_t s = 0; s < spp; ++s) {
+      const size_t slot = size_t(pixel) * spp + s;
+      if (paths.stamps[slot] != paths.generation) continue;
+      const SampleCounters left{
+          pixel, 0, frame, s, 0, f.ctx.settings.seed, spp, f.ctx.settings.sampler};
+      const PathSampler want = PathSampler::make(left);
+      EXPECT_EQ(paths.bounces[slot].sampler.key, want.key) << "pixel " << pixel;
+      EXPECT_EQ(paths.bounces[slot].sampler.index, want.index) << "pixel " << pixel;
+      ++recorded;
+    }
+  EXPECT_EQ(recorded, size_t(24 * 27 * spp));
+}
+
+// Each eye, reuse on against off: the same expected image region by region within Monte
 // Carlo error on every built-in scene (spheres has the mirror and the glossy sweep: their
-// right samples trace their lobes' peaks themselves and reuse the rest). This bounds the shift's
-// two approximations (radiance at x2 towards x1R taken as towards x1L, x1R -> x2 visibility as
-// x1L's) at the resolution of the test: 6 sigma of 128 frames at 32 x 36.
-TEST(StereoReuse, RightEyeConvergesToItsOwnPathsImage) {
+// reused samples trace their lobes' peaks themselves and reuse the rest). With reuse on an
+// eye reuses the other's paths on every other frame (the eyes take turns). This bounds the
+// shift's two approximations (radiance at x2 towards x1R taken as towards x1L, x1R -> x2
+// visibility as x1L's) at the resolution of the test: 6 sigma of 128 frames at 32 x 36.
+TEST(StereoReuse, EachEyeConvergesToItsOwnPathsImage) {
   constexpr int kW = 32, kH = 36, kFrames = 128;
   for (const std::string& name : builtinSceneNames()) {
     Fixture f(name);
-    std::array<std::vector<std::vector<glm::vec3>>, 2> right;
+    std::array<std::array<std::vector<std::vector<glm::vec3>>, 2>, 2> frames;  // [on][eye]
     StereoPaths paths;
-    uint64_t reused = 0, total = 0;
+    std::array<uint64_t, 2> reused{}, total{};
     for (int on = 0; on < 2; ++on)
       for (int k = 0; k < kFrames; ++k) {
         const auto eyes = f.eyes(kW, kH, uint32_t(k));
         auto img = stereoFrame(f.ctx, eyes, uint32_t(k), on == 1, paths);
-        if (on) reused += img[1].reusedPaths, total += img[1].paths;
-        right[on].push_back(std::move(img[1].color));
+        for (int e = 0; e < 2; ++e) {
+          if (on) reused[e] += img[e].reusedPaths, total[e] += img[e].paths;
+          frames[on][e].push_back(std::move(img[e].color));
+        }
       }
-    const auto off = testing::statisticsOf(right[0], kW, kH);
-    const auto onStats = testing::statisticsOf(right[1], kW, kH);
-    const double z = testing::maxRegionZ(onStats, off, testing::kRegions);
-    EXPECT_LT(z, testing::kMaxZ) << name;
-    EXPECT_GT(reused, 0u) << name;
-    std::printf("  %-8s reused %.3f of the right eye's paths, max region |z| %.2f\n", name.c_str(),
-                double(reused) / double(total), z);
+    for (int e = 0; e < 2; ++e) {
+      const auto off = testing::statisticsOf(frames[0][e], kW, kH);
+      const auto onStats = testing::statisticsOf(frames[1][e], kW, kH);
+      const double z = testing::maxRegionZ(onStats, off, testing::kRegions);
+      EXPECT_LT(z, testing::kMaxZ) << name << " eye " << e;
+      EXPECT_GT(reused[e], 0u) << name << " eye " << e;
+      std::printf("  %-8s eye %d reused %.3f of its paths, max region |z| %.2f\n", name.c_str(), e,
+                  double(reused[e]) / double(total[e]), z);
+    }
   }
 }
 
@@ -133,13 +182,14 @@ Scene shadowEdgeScene() {
   return s;
 }
 
-// A reused right sample's NEE aims at its partner's light point, and the left's shadow ray
-// answers for it: the right eye's shadow edge is the left eye's sampling of it, which moves
-// it by at most the partner's distance, kPartnerPixels footprints. Against the right eye's
-// own paths, over 16 frames (the jitter moves the edge's pixels): away from the edge every
-// pixel is the same to float rounding (1e-5 of the lit value: a visibility answer taken
-// from the wrong place, or wrongly, changes a pixel by the whole lit value); along each
-// row the luminance summed over the edge's pixels differs by at most the lit value times
+// A reused sample's NEE aims at its partner's light point, and the partner's shadow ray
+// answers for it: the reusing eye's shadow edge is the other eye's sampling of it, which
+// moves it by at most the partner's distance, kPartnerPixels footprints. Each eye, reuse on
+// (it reuses on every other frame: the eyes take turns) against its own paths, over 16
+// frames (the jitter moves the edge's pixels): away from the edge every pixel is the same
+// to float rounding (1e-5 of the lit value: a visibility answer taken from the wrong place,
+// or wrongly, changes a pixel by half the lit value, in every other frame); along each row
+// the luminance summed over the edge's pixels differs by at most the lit value times
 // kPartnerPixels footprints in pixels: a footprint is the centre pixel's angle times the
 // distance, and on this wall, which faces the eyes, a pixel is 1 / sqrt(1 + tx^2 + ty^2)
 // of that wide, (tx, ty) its ray's tangents (<= the field's, 1.09 and 1.33: 1 / 1.99).
@@ -151,55 +201,61 @@ TEST(StereoReuse, TheLeftsShadowAnswerMovesTheEdgeByAtMostThePartnersDistance) {
   const TraceContext ctx{scene, embree, lights, {}};
   StereoRig rig;
   StereoPaths paths;
-  std::array<std::vector<double>, 2> mean;
+  std::array<std::array<std::vector<double>, 2>, 2> mean;  // [on][eye]
   std::array<uint64_t, 2> rays{}, reused{};
   for (int on = 0; on < 2; ++on) {
-    mean[on].assign(size_t(kW) * kH, 0.0);
+    for (auto& m : mean[on]) m.assign(size_t(kW) * kH, 0.0);
     for (int k = 0; k < kFrames; ++k) {
       const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, uint32_t(k));
       const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, kW, kH, jitter),
                                              rig.eye(Eye::Right, kW, kH, jitter)};
       const auto img = stereoFrame(ctx, eyes, uint32_t(k), on == 1, paths);
-      for (size_t i = 0; i < mean[on].size(); ++i)
-        mean[on][i] += luminance(img[1].color[i]) / kFrames;
-      rays[on] += img[1].rays, reused[on] += img[1].reusedPaths;
+      for (int e = 0; e < 2; ++e) {
+        for (size_t i = 0; i < mean[on][e].size(); ++i)
+          mean[on][e][i] += luminance(img[e].color[i]) / kFrames;
+        rays[on] += img[e].rays, reused[on] += img[e].reusedPaths;
+      }
     }
   }
-  ASSERT_GT(reused[1], uint64_t(kW * kH * kFrames) / 2);
+  ASSERT_GT(reused[1], uint64_t(kW * kH * kFrames) * 9 / 10);  // one eye per frame reuses
   EXPECT_LT(rays[1], rays[0]);  // the reused samples traced no shadow ray
-  const double brightest = *std::max_element(mean[0].begin(), mean[0].end());
-  ASSERT_GT(brightest, 0.1);
-  constexpr int kReach = 3;  // columns either side: beyond the edge's pixel and the partner's
-  const FovTangents& fov = rig.leftFov;
+  constexpr int kReach = 3;     // columns either side: beyond the edge's pixel and the partner's
+  const FovTangents& fov = rig.leftFov;  // the right eye's mirrors it
   const double tx = std::max(fov.left, fov.right), ty = std::max(fov.up, fov.down);
-  const double rowBound = brightest * kPartnerPixels * std::sqrt(1.0 + tx * tx + ty * ty);
-  int edgeRows = 0;
-  double worstRow = 0.0;  // in lit pixels
-  for (int y = 0; y < kH; ++y) {
-    double rowDifference = 0.0;
-    bool edgeInRow = false;
-    for (int x = 0; x < kW; ++x) {
-      const size_t i = size_t(y) * kW + size_t(x);
-      rowDifference += mean[1][i] - mean[0][i];
-      bool dark = true, lit = true;  // the own paths' image around this pixel
-      for (int dx = -kReach; dx <= kReach; ++dx) {
-        const double v = mean[0][size_t(y) * kW + size_t(std::clamp(x + dx, 0, kW - 1))];
-        dark = dark && v == 0.0;
-        lit = lit && v > 0.95 * brightest;  // the view changes it by < 1 % over the wall
+  for (int e = 0; e < 2; ++e) {
+    const std::vector<double>&off = mean[0][e], &on = mean[1][e];
+    const double brightest = *std::max_element(off.begin(), off.end());
+    ASSERT_GT(brightest, 0.1);
+    const double rowBound = brightest * kPartnerPixels * std::sqrt(1.0 + tx * tx + ty * ty);
+    int edgeRows = 0;
+    double worstRow = 0.0;  // in lit pixels
+    for (int y = 0; y < kH; ++y) {
+      double rowDifference = 0.0;
+      bool edgeInRow = false;
+      for (int x = 0; x < kW; ++x) {
+        const size_t i = size_t(y) * kW + size_t(x);
+        rowDifference += on[i] - off[i];
+        bool dark = true, lit = true;  // the own paths' image around this pixel
+        for (int dx = -kReach; dx <= kReach; ++dx) {
+          const double v = off[size_t(y) * kW + size_t(std::clamp(x + dx, 0, kW - 1))];
+          dark = dark && v == 0.0;
+          lit = lit && v > 0.95 * brightest;  // the view changes it by < 1 % over the wall
+        }
+        const bool flat = dark || lit;
+        edgeInRow = edgeInRow || !flat;
+        if (flat) {
+          EXPECT_NEAR(on[i], off[i], 1e-5 * brightest)
+              << "eye " << e << " pixel " << x << ", " << y;
+        }
       }
-      const bool flat = dark || lit;
-      edgeInRow = edgeInRow || !flat;
-      if (flat) {
-        EXPECT_NEAR(mean[1][i], mean[0][i], 1e-5 * brightest) << "pixel " << x << ", " << y;
-      }
+      edgeRows += edgeInRow;
+      EXPECT_LE(std::abs(rowDifference), rowBound) << "eye " << e << " row " << y;
+      worstRow = std::max(worstRow, std::abs(rowDifference) / brightest);
     }
-    edgeRows += edgeInRow;
-    EXPECT_LE(std::abs(rowDifference), rowBound) << "row " << y;
-    worstRow = std::max(worstRow, std::abs(rowDifference) / brightest);
+    std::printf("  eye %d: the edge moved by at most %.2f pixels in a row (bound %.2f)\n", e,
+                worstRow, rowBound / brightest);
+    EXPECT_EQ(edgeRows, kH);  // the edge crosses every row
   }
-  std::printf("  the edge moved by at most %.2f pixels in a row (bound %.2f)\n", worstRow,
-              rowBound / brightest);
-  EXPECT_EQ(edgeRows, kH);  // the edge crosses every row
 }
 
 // The ray through the centre of the pixel of 'cam' whose sample at 'offset' sees 'point'.
@@ -258,6 +314,46 @@ TEST(StereoReuse, AnEdgeWhereTheNearestLeftSampleIsAnotherSurfaceHasNoPartner) {
   EXPECT_EQ(s.partner(), nullptr);
   s.record(10, 8, 3, glm::vec3(2.0f * footprint, 0, 0));  // beyond 1.5 footprints
   EXPECT_EQ(s.partner(), nullptr);
+}
+
+// The eyes take turns to go first (stereoTurnsOf): the left on even frames, the right on
+// odd ones, the first recording and the second reusing. Whichever goes first, a right
+// sample draws the numbers of the left pixel that stands for it (the same left pixel
+// findPartner gives when it reuses), and a left sample its own pixel's: so a left pixel and
+// the right pixels it stands for follow its one Sobol sequence over the frames.
+TEST(StereoReuse, TheEyesTakeTurnsAndEachPairDrawsItsLeftPixelsNumbers) {
+  PartnerSetup s;
+  StereoPaths turnPaths;
+  const StereoTurns even = stereoTurnsOf(true, 2, 4, turnPaths, s.left, 1);
+  EXPECT_EQ(even.order, (std::array<int, 2>{0, 1}));
+  EXPECT_EQ(even.roles[0].record, &turnPaths);
+  EXPECT_EQ(even.roles[1].reuse, &turnPaths);
+  const StereoTurns odd = stereoTurnsOf(true, 2, 5, turnPaths, s.left, 1);
+  EXPECT_EQ(odd.order, (std::array<int, 2>{1, 0}));
+  EXPECT_EQ(odd.roles[1].record, &turnPaths);
+  EXPECT_EQ(odd.roles[0].reuse, &turnPaths);
+  ASSERT_EQ(odd.roles[1].leftEye, &turnPaths.leftEye);
+  EXPECT_EQ(odd.roles[0].leftEye, nullptr);  // the left eye keys its own numbers
+  EXPECT_EQ(turnPaths.leftEye.camera.pose.position, s.left.pose.position);
+  for (const bool on : {false, true}) {  // off, or one eye: left then right, no roles
+    const StereoTurns none = stereoTurnsOf(on, on ? 1 : 2, 5, turnPaths, s.left, 1);
+    EXPECT_EQ(none.order, (std::array<int, 2>{0, 1}));
+    EXPECT_FALSE(none.roles[0].looksAcross() || none.roles[1].looksAcross());
+  }
+  const RightSample sample{s.right.pose.position,
+                           centreRayOf(s.right, s.hit.position, PartnerSetup::kOffset)};
+  const uint32_t leftPixel = 8u * uint32_t(s.left.width) + 10u;
+  // The right eye goes first: no records to reuse, its left pixel's numbers.
+  SampleCounters right{.pixel = 99, .eye = 1, .frame = 5, .sample = 0};
+  EXPECT_EQ(partnerOrOwnNumbers(odd.roles[1], s.hit, sample, right), nullptr);
+  EXPECT_EQ(right.pixel, leftPixel);
+  EXPECT_EQ(right.eye, 0u);
+  EXPECT_EQ(leftPixelOf(s.paths, s.hit, sample), leftPixel);  // as findPartner's
+  // The left eye reuses: with no partner, its own numbers.
+  SampleCounters left{.pixel = 42, .eye = 0, .frame = 5, .sample = 0};
+  EXPECT_EQ(partnerOrOwnNumbers(odd.roles[0], s.hit, sample, left), nullptr);
+  EXPECT_EQ(left.pixel, 42u);
+  EXPECT_EQ(left.eye, 0u);
 }
 
 // A right sample without a partner draws its own path with the numbers of the left pixel
