@@ -1,6 +1,7 @@
 // Stereo path reuse (issue 21; the thesis's future work, sec. 4.2.2 "Ray/Path reprojection"):
 // the right eye's sample at a surface the left eye also sees takes the left sample's path
-// beyond the first hit instead of tracing its own.
+// beyond the first hit instead of tracing its own. The eyes take turns (stereoTurnsOf): in
+// this file "left" is the eye traced first, which records, and "right" the one that reuses.
 //
 // The shift keeps the direction (Lin et al., "Generalized Resampled Importance Sampling",
 // SIGGRAPH 2022, sec. 5, calls it random replay; its Jacobian in solid angle is 1): the right
