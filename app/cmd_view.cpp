@@ -203,9 +203,13 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
   ImGui::Text("frame %u (%d done): %.0f ms", s.last.index, s.rendered, t.totalMs() + s.denoiseMs);
   ImGui::Text("  G-buffer %.1f, read-back %.1f, trace %.1f, denoise %.1f ms", t.gbufferMs,
               t.readbackMs, t.rebuildMs + t.traceMs, s.denoiseMs);
-  ImGui::Text("  tracer first eye %.1f, second %.1f ms (%.0f %% of its paths reused)",
-              t.turnTraceMs[0], t.turnTraceMs[1],
-              t.turnPaths[1] ? 100.0 * double(t.turnReusedPaths[1]) / double(t.turnPaths[1]) : 0.0);
+  if (s.last.settings.stereoReuse)  // the eyes take turns: by turn
+    ImGui::Text(
+        "  tracer first eye %.1f, second %.1f ms (%.0f %% of its paths reused)", t.turnTraceMs[0],
+        t.turnTraceMs[1],
+        t.turnPaths[1] ? 100.0 * double(t.turnReusedPaths[1]) / double(t.turnPaths[1]) : 0.0);
+  else
+    ImGui::Text("  tracer left eye %.1f, right %.1f ms", t.turnTraceMs[0], t.turnTraceMs[1]);
   ImGui::Text("  %s, %.2f spp mean, %d bounces", frameModeName(s.last.settings.mode), s.meanSpp,
               s.last.settings.bounces);
   if (c.animated) {

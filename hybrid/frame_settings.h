@@ -12,7 +12,7 @@ namespace photovr {
 
 enum class FrameMode { Hybrid, PathTraced };
 
-// Whether a stereo frame's right eye reuses the left eye's paths unless told otherwise
+// Whether a stereo frame's second eye reuses the first eye's paths unless told otherwise
 // (--stereo-reuse; measured in docs/MEASUREMENTS.md, "Stereo path reuse").
 constexpr bool kStereoReuseDefault = true;
 const char* frameModeName(FrameMode mode);  // "hybrid", "pt"
@@ -25,7 +25,8 @@ struct FrameSettings {
   SamplerKind sampler = SamplerKind::Sobol;
   SampleMapKind sampleMap = SampleMapKind::Uniform;  // hybrid only
   gl::DenoiseMode denoise = gl::DenoiseMode::Off;
-  bool stereoReuse = kStereoReuseDefault;  // right eye reuses the left's paths (stereo_reuse.h)
+  bool stereoReuse =
+      kStereoReuseDefault;  // the eye traced second reuses the first's paths (stereo_reuse.h)
 };
 
 }  // namespace photovr

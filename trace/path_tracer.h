@@ -25,7 +25,7 @@ struct TraceSettings {
   uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   BatchCall batchCall = BatchCall::Stream;   // how the batched tracer hands rays to Embree
-  bool stereoReuse = false;  // a stereo frame's right eye reuses the left's paths (--stereo-reuse)
+  bool stereoReuse = false;  // a stereo frame's second eye reuses the first's (--stereo-reuse)
   WorkSkips skips;           // work the scene does not need (work_skips.h); the renderers build
                              // their EmbreeScene and LightSet with the same skips
 };
