@@ -25,8 +25,7 @@ struct FrameSettings {
   SamplerKind sampler = SamplerKind::Sobol;
   SampleMapKind sampleMap = SampleMapKind::Uniform;  // hybrid only
   gl::DenoiseMode denoise = gl::DenoiseMode::Off;
-  bool stereoReuse =
-      kStereoReuseDefault;  // the eye traced second reuses the first's paths (stereo_reuse.h)
+  bool stereoReuse = kStereoReuseDefault;  // the second eye reuses the first's (stereo_reuse.h)
 };
 
 }  // namespace photovr
