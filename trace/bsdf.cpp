@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "trace/bsdf_lanes.h"
 #include "trace/sampling.h"
 
 namespace photovr {
@@ -60,10 +61,7 @@ float roughnessToAlpha(float roughness) {
 }
 
 float ggxD(const glm::vec3& h, float alpha) {
-  if (!(h.z > 0.0f)) return 0.0f;
-  const float a2 = alpha * alpha;
-  const float t = h.z * h.z + sinTheta2(h) / a2;
-  return 1.0f / (kPi * a2 * t * t);
+  return lanes::ggxDOf(lanes::V3<float>{h.x, h.y, h.z}, alpha);
 }
 
 float ggxLambda(const glm::vec3& w, float alpha) {
@@ -74,10 +72,7 @@ float ggxLambda(const glm::vec3& w, float alpha) {
 }
 
 float ggxG1OverCos(const glm::vec3& w, float alpha) {
-  if (!(w.z > 0.0f)) return 0.0f;
-  // sqrt(a^2 + (1 - a^2) cos^2) = sqrt(a^2 sin^2 + cos^2) for unit w.
-  const float root = std::sqrt(alpha * alpha * sinTheta2(w) + w.z * w.z);
-  return 2.0f / (w.z + root);
+  return lanes::ggxG1OverCosOf(lanes::V3<float>{w.x, w.y, w.z}, alpha);
 }
 
 float ggxG1(const glm::vec3& w, float alpha) {
@@ -89,9 +84,9 @@ glm::vec3 fresnelSchlick(const glm::vec3& f0, float cosTheta) {
 }
 
 glm::vec3 fresnelSchlick(const glm::vec3& f0, float f90, float cosTheta) {
-  const float m = 1.0f - std::clamp(cosTheta, 0.0f, 1.0f);
-  const float m2 = m * m;
-  return f0 + (glm::vec3(f90) - f0) * (m2 * m2 * m);
+  const lanes::V3<float> f =
+      lanes::fresnelSchlickOf(lanes::V3<float>{f0.x, f0.y, f0.z}, f90, cosTheta);
+  return {f.x, f.y, f.z};
 }
 
 float fresnelDielectric(float cosThetaI, float eta) {
@@ -105,23 +100,8 @@ float fresnelDielectric(float cosThetaI, float eta) {
 }
 
 glm::vec3 sampleGgxVndf(const glm::vec3& wo, float alpha, glm::vec2 u) {
-  // Sec. 3.2: stretch wo to the hemisphere configuration (alpha = 1).
-  const glm::vec3 vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  // Sec. 4.1: an orthonormal basis around vh, any basis when vh = +z.
-  const float lensq = vh.x * vh.x + vh.y * vh.y;
-  const glm::vec3 t1 =
-      lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1, 0, 0);
-  const glm::vec3 t2 = glm::cross(vh, t1);
-  // Sec. 4.2: a uniform point on the projected disk, warped to its visible half.
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const float p1 = r * std::cos(phi);
-  float p2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * safeSqrt(1.0f - p1 * p1) + s * p2;
-  // Sec. 4.3: project onto the hemisphere; sec. 3.4: unstretch.
-  const glm::vec3 nh = p1 * t1 + p2 * t2 + safeSqrt(1.0f - p1 * p1 - p2 * p2) * vh;
-  return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(0.0f, nh.z)));
+  const lanes::V3<float> h = lanes::ggxVndfOf(lanes::V3<float>{wo.x, wo.y, wo.z}, alpha, u.x, u.y);
+  return {h.x, h.y, h.z};
 }
 
 float ggxVndfPdf(const glm::vec3& wo, const glm::vec3& h, float alpha) {
@@ -406,29 +386,21 @@ bool brdfSamplePdf(const BsdfVertex& v, BsdfSample& s, glm::vec3& h, float& d) {
 }
 
 BsdfSample sampleBase(const BsdfVertex& v, glm::vec2 u) {
+  if (v.glass == 0.0f) return sampleBrdf(v, u);
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
-  if (v.glass > 0.0f && u.x < v.glassProbability) {
+  if (u.x < v.glassProbability) {
     u.x = remapLobeNumber(u.x, v.glassProbability, true);
     s.wi = sampleGlassDirection(v, u);
     s.specularLobe = true;
   } else {
-    if (v.glass > 0.0f) u.x = remapLobeNumber(u.x, v.glassProbability, false);
+    u.x = remapLobeNumber(u.x, v.glassProbability, false);
     s.wi = sampleBrdfDirection(v, u, s.specularLobe);
     // A reflection below the surface is no sample (the glass lobe's pdf would count it).
-    if (v.glass > 0.0f && !(s.wi.z > 0.0f)) return {};
+    if (!(s.wi.z > 0.0f)) return {};
   }
   // The pdf is recomputed from wi rather than carried from the lobe's sampler, so a
   // sample's pdf is exactly what pdfBsdf() later says about the same direction (MIS).
-  if (v.glass == 0.0f) {
-    glm::vec3 h;
-    float d;
-    if (!brdfSamplePdf(v, s, h, d)) return {};
-    s.fDiffuse = diffuse(v, s.wi);
-    s.f = specular(v, s.wi, h, d) + s.fDiffuse;
-    s.weight = s.f * (s.wi.z / s.pdf);
-    return s;
-  }
   const BsdfEval e = evalBsdfAndPdf(v, s.wi);
   if (!(e.pdf > 0.0f) || !isFinite(e.pdf)) return {};
   s.pdf = e.pdf;

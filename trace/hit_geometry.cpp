@@ -6,6 +6,8 @@
 #include <cstring>
 #include <vector>
 
+#include "trace/lanes.h"
+
 // -Wpsabi warns that 32-byte vectors pass differently with and without AVX; these helpers
 // are file-local and always inlined, so no call crosses that boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -22,41 +24,17 @@ constexpr float kErrorUlps = 8.0f * 1.1920929e-7f;
 // expression in glm's order (mat4 * vec4: (m0 x + m1 y) + (m2 z + m3 w); vec3 dot and
 // length: (x + y) + z), so hitGeometry gives what surfaceAt computed with glm before and
 // the batch gives hitGeometry's bits. Branch-free: selects instead of conditions.
-using F8 = float __attribute__((vector_size(32)));
-using I8 = int32_t __attribute__((vector_size(32)));
+using lanes::absOf;
+using lanes::cross;
+using lanes::dot;
+using lanes::F8;
+using lanes::I8;
+using lanes::maxOf;
+using lanes::minus;
+using lanes::select;
+using lanes::sqrtOf;
+using lanes::V3;
 
-[[gnu::always_inline]] inline float absOf(float v) {
-  return std::abs(v);
-}
-[[gnu::always_inline]] inline F8 absOf(const F8& v) {
-  return F8(I8(v) & 0x7fffffff);
-}
-[[gnu::always_inline]] inline float maxOf(float a, float b) {
-  return std::max(a, b);
-}
-[[gnu::always_inline]] inline F8 maxOf(const F8& a, const F8& b) {
-  return a < b ? b : a;  // std::max's (a < b) ? b : a, lane by lane
-}
-[[gnu::always_inline]] inline float sqrtOf(float v) {
-  return std::sqrt(v);
-}
-[[gnu::always_inline]] inline F8 sqrtOf(const F8& v) {
-  F8 r;
-  for (int k = 0; k < 8; ++k) r[k] = std::sqrt(v[k]);  // correctly rounded, as the scalar
-  return r;
-}
-// ok ? a : b per lane.
-[[gnu::always_inline]] inline float select(bool ok, float a, float b) {
-  return ok ? a : b;
-}
-[[gnu::always_inline]] inline F8 select(const I8& ok, const F8& a, const F8& b) {
-  return ok ? a : b;
-}
-
-template <typename T>
-struct V3 {
-  T x, y, z;
-};
 template <typename T>
 struct Corners {
   V3<T> m0, m1, m2, m3;  // the instance transform's columns (its w row is 0 0 0 1)
@@ -73,11 +51,6 @@ template <typename T>
   return {(c.m0.x * p.x + c.m1.x * p.y) + (c.m2.x * p.z + c.m3.x * 1.0f),
           (c.m0.y * p.x + c.m1.y * p.y) + (c.m2.y * p.z + c.m3.y * 1.0f),
           (c.m0.z * p.x + c.m1.z * p.y) + (c.m2.z * p.z + c.m3.z * 1.0f)};
-}
-
-template <typename T>
-[[gnu::always_inline]] inline V3<T> minus(const V3<T>& a, const V3<T>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 
 // From the world-space corners.
@@ -108,15 +81,6 @@ template <typename T>
 template <typename T>
 [[gnu::always_inline]] inline Result<T> geometryOf(const Corners<T>& c, const T& b1, const T& b2) {
   return geometryOf(toWorld(c, c.p0), toWorld(c, c.p1), toWorld(c, c.p2), b1, b2);
-}
-
-template <typename T>
-[[gnu::always_inline]] inline V3<T> cross(const V3<T>& a, const V3<T>& b) {  // glm's order
-  return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
-}
-template <typename T>
-[[gnu::always_inline]] inline T dot(const V3<T>& a, const V3<T>& b) {
-  return (a.x * b.x + a.y * b.y) + a.z * b.z;
 }
 
 template <typename T>

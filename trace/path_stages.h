@@ -12,10 +12,12 @@
 
 #include <glm/glm.hpp>
 
+#include "trace/bsdf.h"
 #include "trace/embree_scene.h"
 #include "trace/media.h"
 #include "trace/path_tracer.h"
 #include "trace/rng.h"
+#include "trace/sampling.h"
 #include "trace/stereo_reuse.h"
 #include "trace/surface.h"
 #include "trace/vertex_numbers.h"
@@ -72,6 +74,23 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
+
+// shadeVertex in two halves, around its BSDF sample, so that the batched tracer samples the
+// BSDFs of a whole bounce at once (trace/bsdf_lanes.h): shadeVertexHead does everything
+// before it (the albedos, the frame and BSDF, NEE, stereo reuse's term) and returns whether
+// the vertex goes on to a bounce ray; if so, shadeVertexTail takes sampleBsdf(vs.bsdf, u.bsdf)
+// and makes it. shadeVertex is the two with the sample between them.
+struct VertexShading {
+  Frame frame;
+  BsdfVertex bsdf;
+  VertexRays rays;  // the head's shadow ray
+  bool splitsHere = false;
+};
+bool shadeVertexHead(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
+                     PathResult& result, ShadowRay& shadow, VertexShading& vs);
+VertexRays shadeVertexTail(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
+                           PathResult& result, const VertexShading& vs, const BsdfSample& bs,
+                           BatchRay& bounce);
 // A reused right sample (startPath's 'reuse') at its first vertex, shaded where it is made,
 // with the left's recorded numbers: true with 'result' its finished estimate when it needs no
 // ray (the left answered its shadow ray, and its own bounce draws no direction of its own

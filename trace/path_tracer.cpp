@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "trace/bsdf.h"
 #include "trace/path_stages.h"
@@ -247,55 +246,59 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {
                                    int(depth) + 1 >= ctx.settings.russianRouletteDepth};
 }
 
-VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
-                       PathResult& result, ShadowRay& shadow, BatchRay& bounce) {
+bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
+                     PathResult& result, ShadowRay& shadow, VertexShading& vs) {
   if (!p.albedoSet && !showsWhatIsBeyond(p.hit.bsdf)) {
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
   }
-  const bool splitsHere = !p.split && !seesThrough(p.hit.bsdf);
-  if (splitsHere) {
+  vs.splitsHere = !p.split && !seesThrough(p.hit.bsdf);
+  if (vs.splitsHere) {
     p.split = true;
     result.diffuseAlbedo = p.beta * diffuseAlbedo(p.hit.bsdf);
     if (p.depth > 0) result.guide = p.hit.shadingNormal * float(p.hit.instance + 1);
   }
-  const Frame frame = Frame::fromZ(p.hit.shadingNormal);
-  const BsdfVertex bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
+  const Frame& frame = vs.frame = Frame::fromZ(p.hit.shadingNormal);
+  const BsdfVertex& bsdf = vs.bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
   if (p.depth == 0)
     result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
-  VertexRays rays;
-  if (directLight(ctx, p, frame, bsdf, splitsHere, u, shadow)) {
+  vs.rays = {};
+  if (directLight(ctx, p, frame, bsdf, vs.splitsHere, u, shadow)) {
     if (leftShadowAnswers(p))
       resolveShadow(p, result, shadow, p.reuse->shadowBlocked);
     else
-      rays.shadow = true;
+      vs.rays.shadow = true;
   }
-  result.rays += rays.shadow;
-  std::optional<ReuseSplit> split;
-  if (p.reuse) {
-    split.emplace(*p.reuse, p.hit, bsdf, p.wo);
-    reuseBounce(ctx, p, frame, bsdf, *split, result);
-    if (split->whole()) return rays;
-  }
+  result.rays += vs.rays.shadow;
   if (p.depth == 0 && p.record) {
     p.record->numbers = u;
     p.record->woAbove = bsdf.wo.z > 0.0f;
     p.record->specularProbability = bsdf.specularProbability;
   }
+  if (!p.reuse) return true;
+  const ReuseSplit split(*p.reuse, p.hit, bsdf, p.wo);
+  reuseBounce(ctx, p, frame, bsdf, split, result);
+  if (split.whole()) return false;
   // A reused right sample traces its own bounce only where the reused term does not hold
   // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
   // BSDF's value only for a direction it keeps.
-  BsdfSample bs = split ? sampleBsdfDirection(bsdf, u.bsdf) : sampleBsdf(bsdf, u.bsdf);
-  if (!bs.valid()) return rays;
+  const BsdfSample bs = sampleBsdfDirection(bsdf, u.bsdf);
+  if (!bs.valid()) return false;
   const glm::vec3 wi = frame.toWorld(bs.wi);
-  if (!sameSide(wi, p.hit, bs.wi)) return rays;
-  if (split) {
-    if (split->reused(wi, bs.pdf)) return rays;
-    bs = sampleBsdf(bsdf, u.bsdf);
-  }
-  result.ownBounces += p.reuse != nullptr;
+  if (!sameSide(wi, p.hit, bs.wi) || split.reused(wi, bs.pdf)) return false;
+  ++result.ownBounces;
   p.reuse = nullptr;
-  if (splitsHere) p.share = diffuseShare(bs);
+  return true;
+}
+
+VertexRays shadeVertexTail(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
+                           PathResult& result, const VertexShading& vs, const BsdfSample& bs,
+                           BatchRay& bounce) {
+  VertexRays rays = vs.rays;
+  if (!bs.valid()) return rays;
+  const glm::vec3 wi = vs.frame.toWorld(bs.wi);
+  if (!sameSide(wi, p.hit, bs.wi)) return rays;
+  if (vs.splitsHere) p.share = diffuseShare(bs);
   if (p.depth == 0 && p.record) {
     p.record->sampled = true;
     p.record->dir = wi;
@@ -326,6 +329,13 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   ++result.rays;
   rays.bounce = true;
   return rays;
+}
+
+VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
+                       PathResult& result, ShadowRay& shadow, BatchRay& bounce) {
+  VertexShading vs;
+  if (!shadeVertexHead(ctx, p, u, result, shadow, vs)) return vs.rays;
+  return shadeVertexTail(ctx, p, u, result, vs, sampleBsdf(vs.bsdf, u.bsdf), bounce);
 }
 
 bool finishReusedSample(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& wo,

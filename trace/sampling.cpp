@@ -3,25 +3,19 @@
 #include <cassert>
 #include <limits>
 
+#include "trace/bsdf_lanes.h"
+
 namespace photovr {
 
 glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
-  const glm::vec2 o = 2.0f * u - 1.0f;
-  if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);
-  float r, theta;
-  if (std::abs(o.x) > std::abs(o.y)) {
-    r = o.x;
-    theta = 0.25f * kPi * (o.y / o.x);
-  } else {
-    r = o.y;
-    theta = 0.5f * kPi - 0.25f * kPi * (o.x / o.y);
-  }
-  return r * glm::vec2(std::cos(theta), std::sin(theta));
+  glm::vec2 d;
+  lanes::concentricDiskOf(u.x, u.y, d.x, d.y);
+  return d;
 }
 
 glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
-  const glm::vec2 d = sampleUniformDiskConcentric(u);
-  return {d.x, d.y, safeSqrt(1.0f - d.x * d.x - d.y * d.y)};
+  const lanes::V3<float> w = lanes::cosineHemisphereOf(u.x, u.y);
+  return {w.x, w.y, w.z};
 }
 
 glm::vec3 sampleUniformHemisphere(glm::vec2 u) {

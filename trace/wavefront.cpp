@@ -1,7 +1,11 @@
 #include "trace/wavefront.h"
 
+#include "trace/bsdf_lanes.h"
+
 namespace photovr {
 namespace {
+
+using Sampling = WavefrontScratch::Sampling;
 
 // Sampling stage: the numbers of every active path's vertex, in one vectorised pass (all
 // active paths are at the same depth: they start together and advance a bounce a step).
@@ -14,29 +18,54 @@ void drawAll(const TraceContext& ctx, WavefrontScratch& s) {
   drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
 }
 
-// Shading stage: every active path's vertex; queues its shadow and bounce rays. Each is
-// written in place into its queue (dropped again where the vertex made none) and the shadow
-// rays copied into Embree's array after the loop: a ray copied right after the scalar
-// stores that built it stalled on store forwarding.
+// Shading stage: every active path's vertex, in three passes: each vertex up to its BSDF
+// sample (shadeVertexHead, which queues its shadow ray), the BSDF stage (every vertex
+// without glass or layers sampled in SIMD lanes, trace/bsdf_lanes.h), then each vertex's
+// bounce ray (shadeVertexTail). Rays are written in place into their queue (dropped again
+// where the vertex made none) and the shadow rays copied into Embree's array after the
+// loop: a ray copied right after the scalar stores that built it stalled on store
+// forwarding.
 void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
   s.bounceRays.clear(), s.bounceOwner.clear();
+  s.laneVertices.clear(), s.laneNumbers.clear();
   drawAll(ctx, s);
-  for (size_t j = 0; j < s.active.size(); ++j) {
+  const size_t n = s.active.size();
+  s.shading.resize(n);
+  s.sampling.resize(n);
+  for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.active[j];
     ShadowRay& shadow = s.shadows.emplace_back();
-    BatchRay& bounce = s.bounceRays.emplace_back().ray;
-    const VertexRays rays = shadeVertex(ctx, s.paths[k], s.numbers[j], results[k], shadow, bounce);
-    if (rays.shadow)
+    VertexShading& vs = s.shading[j];
+    const bool bounces = shadeVertexHead(ctx, s.paths[k], s.numbers[j], results[k], shadow, vs);
+    if (vs.rays.shadow)
       s.shadowOwner.push_back(k);
     else
       s.shadows.pop_back();
-    if (rays.bounce)
+    s.sampling[j] = !bounces             ? Sampling::None
+                    : plainBrdf(vs.bsdf) ? Sampling::Lanes
+                                         : Sampling::One;
+    if (s.sampling[j] == Sampling::Lanes) {
+      s.laneVertices.push_back(&vs.bsdf);
+      s.laneNumbers.push_back(s.numbers[j].bsdf);
+    }
+  }
+  for (const ShadowRay& shadow : s.shadows) s.shadowRays.push_back(shadow.ray);
+  s.laneSamples.resize(s.laneVertices.size());
+  sampleBrdfs(s.laneVertices, s.laneNumbers, s.laneSamples);
+  size_t lane = 0;
+  for (size_t j = 0; j < n; ++j) {
+    if (s.sampling[j] == Sampling::None) continue;
+    const uint32_t k = s.active[j];
+    const VertexShading& vs = s.shading[j];
+    const BsdfSample bs = s.sampling[j] == Sampling::Lanes ? s.laneSamples[lane++]
+                                                           : sampleBsdf(vs.bsdf, s.numbers[j].bsdf);
+    BatchRay& bounce = s.bounceRays.emplace_back().ray;
+    if (shadeVertexTail(ctx, s.paths[k], s.numbers[j], results[k], vs, bs, bounce).bounce)
       s.bounceOwner.push_back(k);
     else
       s.bounceRays.pop_back();
   }
-  for (const ShadowRay& shadow : s.shadows) s.shadowRays.push_back(shadow.ray);
 }
 
 void traceShadows(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {

@@ -31,8 +31,16 @@ struct WavefrontScratch {
   std::vector<uint32_t> active, next;  // paths still going, by index
   std::vector<PathSampler> samplers;   // the active paths' samplers ...
   std::vector<VertexNumbers> numbers;  // ... and the numbers their vertices draw
-  std::vector<ShadowRay> shadows;      // this bounce's shadow rays ...
-  std::vector<uint32_t> shadowOwner;   // ... and the path each belongs to
+  // Per active path, its vertex up to the BSDF sample and how that sample is drawn; the
+  // vertices sampled in lanes, their numbers and samples, in the active paths' order.
+  enum class Sampling : uint8_t { None, Lanes, One };
+  std::vector<VertexShading> shading;
+  std::vector<Sampling> sampling;
+  std::vector<const BsdfVertex*> laneVertices;
+  std::vector<glm::vec2> laneNumbers;
+  std::vector<BsdfSample> laneSamples;
+  std::vector<ShadowRay> shadows;     // this bounce's shadow rays ...
+  std::vector<uint32_t> shadowOwner;  // ... and the path each belongs to
   std::vector<BatchRay> shadowRays;
   std::vector<BatchRayHit> bounceRays;  // this bounce's bounce rays and hits ...
   std::vector<uint32_t> bounceOwner;    // ... and the path each belongs to
