@@ -21,43 +21,10 @@ bool halfVector(const glm::vec3& wo, const glm::vec3& wi, glm::vec3& h) {
   return true;
 }
 
-// wo and wi both above the surface, with a half-vector h: otherwise f and pdf are 0.
-bool reflectionPair(const BsdfVertex& v, const glm::vec3& wi, glm::vec3& h) {
-  return v.wo.z > 0.0f && wi.z > 0.0f && halfVector(v.wo, wi, h);
-}
-
-// The specular lobe with d = ggxD(h, alpha).
-glm::vec3 specular(const BsdfVertex& v, const glm::vec3& wi, const glm::vec3& h, float d) {
-  const glm::vec3 f = fresnelSchlick(v.f0, v.f90, glm::dot(v.wo, h));
-  return f * (d * v.g1OverCosWo * ggxG1OverCos(wi, v.alpha) * 0.25f);
-}
-
-glm::vec3 diffuse(const BsdfVertex& v, const glm::vec3& wi) {
-  const glm::vec3 one(1.0f);
-  return (one - v.fresnelWo) * (one - fresnelSchlick(v.f0, v.f90, wi.z)) * v.diffuse * kInvPi;
-}
-
-// The combined density of a reflection pair, with d = ggxD(h, alpha). Visible-normal
-// density mapped through reflection, dwi = 4 (wo.h) dh (Heitz 2018, eq. 17): G1(wo) D(h) /
-// (4 wo.z), with wo.h > 0 here since both lie above the surface.
-float pdf(const BsdfVertex& v, const glm::vec3& wi, float d) {
-  const float specPdf = v.g1OverCosWo * d * 0.25f;
-  const float pSpec = v.specularProbability;
-  return pSpec * specPdf + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
-}
-
-float specularProbability(const glm::vec3& fresnelWo, const glm::vec3& diffuseAlbedo) {
-  const float spec = luminance(fresnelWo);
-  const float diff = luminance((glm::vec3(1.0f) - fresnelWo) * diffuseAlbedo);
-  if (diff <= 0.0f) return 1.0f;
-  return spec / (spec + diff);
-}
-
 }  // namespace
 
 float roughnessToAlpha(float roughness) {
-  const float r = roughness > 0.0f ? std::min(roughness, 1.0f) : 0.0f;  // NaN -> 0
-  return std::max(r * r, kMinAlpha);
+  return lanes::roughnessToAlphaOf(roughness);
 }
 
 float ggxD(const glm::vec3& h, float alpha) {
@@ -261,14 +228,6 @@ LobeEval glassLobe(const BsdfVertex& v, const glm::vec3& wi) {
   return v.thinWalled ? glassThinTransmission(v, wi) : glassRefraction(v, wi);
 }
 
-// The metallic-roughness BRDF alone (weighted by brdfWeight when there is a glass lobe).
-BsdfEval evalBrdf(const BsdfVertex& v, const glm::vec3& wi) {
-  glm::vec3 h;
-  if (!reflectionPair(v, wi, h)) return {};
-  const float d = ggxD(h, v.alpha);
-  return {{diffuse(v, wi), specular(v, wi, h, d)}, pdf(v, wi, d)};
-}
-
 // A direction from the glass lobe, or none (wi = 0): VNDF normal, then reflect, mirror or
 // refract (Snell, pbrt-v4's Refract) as u.x chose.
 glm::vec3 sampleGlassDirection(const BsdfVertex& v, glm::vec2 u) {
@@ -326,26 +285,18 @@ void prepareLayers(const BsdfParams& p, BsdfVertex& v);
 }  // namespace
 
 BsdfVertex prepareBsdf(const BsdfParams& p, const glm::vec3& wo) {
-  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN).
-  const glm::vec3 base =
-      glm::clamp(glm::vec3(isFinite(p.baseColor) ? p.baseColor : glm::vec3(0.0f)), 0.0f, 1.0f);
-  const float metallic0 = isFinite(p.metallic) ? std::clamp(p.metallic, 0.0f, 1.0f) : 0.0f;
-  const glm::vec3 df0 = glm::clamp(
-      glm::vec3(isFinite(p.dielectricF0) ? p.dielectricF0 : glm::vec3(0.0f)), 0.0f, 1.0f);
-  const float df90 = isFinite(p.dielectricF90) ? std::clamp(p.dielectricF90, 0.0f, 1.0f) : 0.0f;
+  // Clamp into the documented ranges; NaN parameters become 0 (std::clamp keeps NaN). The
+  // BRDF's terms are the lanes' template (trace/bsdf_lanes.h), so the BSDF stage's
+  // vertices get these bits.
+  const lanes::V3<float> base = lanes::unitColourOf(v3Of(p.baseColor));
   BsdfVertex v;
   v.wo = wo;
-  v.alpha = roughnessToAlpha(p.roughness);
-  v.tint = base;
+  v.alpha = lanes::roughnessToAlphaOf(p.roughness);
+  v.tint = vec3Of(base);
   float metallic;
-  prepareGlass(p, metallic0, v, metallic);
-  v.f0 = glm::mix(df0, base, metallic);
-  // df90 + (1 - df90) metallic, not glm::mix: exactly 1 for the core model's df90 = 1.
-  v.f90 = df90 + (1.0f - df90) * metallic;
-  v.diffuse = (1.0f - metallic) * base;
-  v.fresnelWo = fresnelSchlick(v.f0, v.f90, wo.z);
-  v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);
-  v.specularProbability = specularProbability(v.fresnelWo, v.diffuse);
+  prepareGlass(p, lanes::unitNumberOf(p.metallic), v, metallic);
+  setBrdfTerms(v, lanes::brdfTermsOf(base, metallic, lanes::unitColourOf(v3Of(p.dielectricF0)),
+                                     lanes::unitNumberOf(p.dielectricF90), v.alpha, v3Of(wo)));
   if (v.glass > 0.0f) {
     // Lobe weights as in specularProbability: the BRDF's estimate lum(F) + lum((1 - F)
     // diffuse), the glass lobe's F + (1 - F) lum(tint), both at the macro-surface.
@@ -375,14 +326,6 @@ BsdfEval evalBase(const BsdfVertex& v, const glm::vec3& wi) {
   e.f.specular += v.glass * g.f;
   e.pdf += v.glassProbability * g.pdf;
   return e;
-}
-
-// The BRDF's pdf at s.wi, with the half-vector h and D(h) its value needs; false: no sample.
-bool brdfSamplePdf(const BsdfVertex& v, BsdfSample& s, glm::vec3& h, float& d) {
-  if (!reflectionPair(v, s.wi, h)) return false;
-  d = ggxD(h, v.alpha);
-  s.pdf = pdf(v, s.wi, d);
-  return s.pdf > 0.0f && isFinite(s.pdf);
 }
 
 BsdfSample sampleBase(const BsdfVertex& v, glm::vec2 u) {
@@ -517,9 +460,8 @@ BsdfEval evalBsdfAndPdf(const BsdfVertex& v, const glm::vec3& wi) {
 
 float pdfBsdf(const BsdfVertex& v, const glm::vec3& wi) {
   if (v.layered || v.glass != 0.0f) return evalBsdfAndPdf(v, wi).pdf;
-  glm::vec3 h;
-  if (!reflectionPair(v, wi, h)) return 0.0f;
-  return pdf(v, wi, ggxD(h, v.alpha));
+  // Inlined, the BSDF's value is left out: only the pdf is used.
+  return lanes::evalBrdfPartsOf(brdfVertexOf(v), v3Of(wi)).value.pdf;
 }
 
 BsdfSample sampleBsdfDirection(const BsdfVertex& v, glm::vec2 u) {
@@ -527,17 +469,13 @@ BsdfSample sampleBsdfDirection(const BsdfVertex& v, glm::vec2 u) {
   if (!(v.wo.z > 0.0f)) return {};
   BsdfSample s;
   s.wi = sampleBrdfDirection(v, u, s.specularLobe);
-  glm::vec3 h;
-  float d;
-  return brdfSamplePdf(v, s, h, d) ? s : BsdfSample{};
+  s.pdf = pdfBsdf(v, s.wi);
+  return s.pdf > 0.0f && isFinite(s.pdf) ? s : BsdfSample{};
 }
 
 BsdfVertex prepareBsdfPdf(const BsdfParams& p, const glm::vec3& wo, float specularProbability) {
-  // Exactly zero: prepareBsdf finds no glass and no layers whatever the other parameters.
-  const bool brdfOnly =
-      p.transmission == 0.0f && p.clearcoat == 0.0f && p.sheenColor == glm::vec3(0.0f);
   BsdfVertex v;
-  if (brdfOnly) {
+  if (plainBsdf(p)) {
     v.wo = wo;
     v.alpha = roughnessToAlpha(p.roughness);
     v.g1OverCosWo = ggxG1OverCos(wo, v.alpha);

@@ -40,10 +40,6 @@ BrdfVertexOf<T> fromFloats(const T* f) {
           f[15]};
 }
 
-glm::vec3 vec3Of(const V3<float>& v) {
-  return {v.x, v.y, v.z};
-}
-
 // Eight vertices' inputs and samples, as vectors.
 struct alignas(32) BrdfLanes8 {  // 32: see hit_geometry.cpp's Lanes8
   F8 vertex[kVertexFloats];
@@ -61,13 +57,79 @@ __attribute__((target_clones("avx2", "default"))) void sampleLanes(BrdfLanes8* g
   }
 }
 
+// Eight parameter sets, views and light directions, and what they prepare to.
+struct alignas(32) PrepareLanes8 {
+  lanes::BrdfParamsOf<F8> params;
+  V3<F8> wo, wi;
+  BrdfVertexOf<F8> vertex;
+  V3<F8> tint;
+  lanes::BrdfEvalOf<F8> eval;
+};
+
+__attribute__((target_clones("avx2", "default"))) void prepareLanes(PrepareLanes8* groups,
+                                                                    size_t count) {
+  for (size_t g = 0; g < count; ++g) {
+    PrepareLanes8& l = groups[g];
+    l.vertex = lanes::prepareBrdfOf(l.params, l.wo, l.tint);
+    l.eval = lanes::evalBrdfPartsOf(l.vertex, l.wi).value;
+  }
+}
+
+void setLane(V3<F8>& to, size_t k, const glm::vec3& v) {
+  to.x[k] = v.x, to.y[k] = v.y, to.z[k] = v.z;
+}
+glm::vec3 laneOf(const V3<F8>& v, size_t k) {
+  return {v.x[k], v.y[k], v.z[k]};
+}
+
+// prepareBsdf's vertex for plain parameters from lane k: its BRDF terms, the tint, and the
+// coat's view, which prepareLayers sets to wo with no coat; the rest is BsdfVertex's default.
+void storeVertex(const PrepareLanes8& l, size_t k, BsdfVertex& v) {
+  v = BsdfVertex{};
+  v.wo = v.coatWo = laneOf(l.vertex.wo, k);
+  v.alpha = l.vertex.alpha[k];
+  v.f0 = laneOf(l.vertex.f0, k);
+  v.diffuse = laneOf(l.vertex.diffuse, k);
+  v.f90 = l.vertex.f90[k];
+  v.fresnelWo = laneOf(l.vertex.fresnelWo, k);
+  v.g1OverCosWo = l.vertex.g1OverCosWo[k];
+  v.specularProbability = l.vertex.specularProbability[k];
+  v.tint = laneOf(l.tint, k);
+}
+
 }  // namespace
+
+void prepareBrdfs(std::span<const BrdfPrepareJob> jobs) {
+  const size_t n = jobs.size(), count = (n + 7) / 8;
+  if (n == 0) return;
+  thread_local std::vector<PrepareLanes8> groups;
+  groups.resize(count);
+  for (size_t i = 0; i < count * 8; ++i) {
+    const BrdfPrepareJob& job = jobs[std::min(i, n - 1)];  // as in sampleBrdfs
+    assert(plainBsdf(*job.params));
+    const BsdfParams& p = *job.params;
+    PrepareLanes8& l = groups[i / 8];
+    const size_t k = i % 8;
+    setLane(l.params.baseColor, k, p.baseColor);
+    l.params.metallic[k] = p.metallic;
+    l.params.roughness[k] = p.roughness;
+    setLane(l.params.dielectricF0, k, p.dielectricF0);
+    l.params.dielectricF90[k] = p.dielectricF90;
+    setLane(l.wo, k, job.wo);
+    setLane(l.wi, k, job.wi);
+  }
+  prepareLanes(groups.data(), count);
+  for (size_t i = 0; i < n; ++i) {
+    const PrepareLanes8& l = groups[i / 8];
+    const size_t k = i % 8;
+    storeVertex(l, k, *jobs[i].vertex);
+    *jobs[i].eval = {{laneOf(l.eval.diffuse, k), laneOf(l.eval.specular, k)}, l.eval.pdf[k]};
+  }
+}
 
 BsdfSample sampleBrdf(const BsdfVertex& v, glm::vec2 u) {
   assert(v.glass == 0.0f);
-  float f[kVertexFloats];
-  vertexFloats(v, f);
-  const BrdfSampleOf<float> s = lanes::sampleBrdfOf(fromFloats(f), u.x, u.y);
+  const BrdfSampleOf<float> s = lanes::sampleBrdfOf(brdfVertexOf(v), u.x, u.y);
   BsdfSample out;
   out.wi = vec3Of(s.wi);
   out.f = vec3Of(s.f);
@@ -76,6 +138,11 @@ BsdfSample sampleBrdf(const BsdfVertex& v, glm::vec2 u) {
   out.weight = vec3Of(s.weight);
   out.specularLobe = s.specularLobe;
   return out;
+}
+
+BsdfEval evalBrdf(const BsdfVertex& v, const glm::vec3& wi) {
+  const lanes::BrdfEvalOf<float> e = lanes::evalBrdfPartsOf(brdfVertexOf(v), v3Of(wi)).value;
+  return {{vec3Of(e.diffuse), vec3Of(e.specular)}, e.pdf};
 }
 
 void sampleBrdfs(std::span<const BsdfVertex* const> vertices, std::span<const glm::vec2> u,

@@ -14,6 +14,7 @@
 
 #include "trace/bsdf.h"
 #include "trace/embree_scene.h"
+#include "trace/lights.h"
 #include "trace/media.h"
 #include "trace/path_tracer.h"
 #include "trace/rng.h"
@@ -75,17 +76,26 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
 
-// shadeVertex in two halves, around its BSDF sample, so that the batched tracer samples the
-// BSDFs of a whole bounce at once (trace/bsdf_lanes.h): shadeVertexHead does everything
-// before it (the albedos, the frame and BSDF, NEE, stereo reuse's term) and returns whether
-// the vertex goes on to a bounce ray; if so, shadeVertexTail takes sampleBsdf(vs.bsdf, u.bsdf)
-// and makes it. shadeVertex is the two with the sample between them.
+// shadeVertex in steps around its BSDF, so that the batched tracer prepares, evaluates and
+// samples the BSDFs of a whole bounce at once (trace/bsdf_lanes.h): startVertex (the
+// albedos, the frame, NEE's light sample), prepareVertex (the BSDF, and its value and pdf
+// towards the light), shadeVertexHead (NEE's shadow ray, stereo reuse's term) returns
+// whether the vertex goes on to a bounce ray; if so, shadeVertexTail takes
+// sampleBsdf(vs.bsdf, u.bsdf) and makes it. shadeVertex is the steps in that order.
 struct VertexShading {
   Frame frame;
+  glm::vec3 wo{0.0f};  // in the shading frame
+  LightSample light;   // NEE's, with its direction in the shading frame ...
+  glm::vec3 wiL{0.0f};
+  bool lit = false;  // ... valid and on the side the frame says: nee holds the BSDF there
   BsdfVertex bsdf;
+  BsdfEval nee;
   VertexRays rays;  // the head's shadow ray
   bool splitsHere = false;
 };
+void startVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
+                 PathResult& result, VertexShading& vs);
+void prepareVertex(const BsdfParams& params, VertexShading& vs);
 bool shadeVertexHead(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                      PathResult& result, ShadowRay& shadow, VertexShading& vs);
 VertexRays shadeVertexTail(const TraceContext& ctx, PathState& path, const VertexNumbers& u,

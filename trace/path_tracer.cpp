@@ -79,34 +79,43 @@ bool leftShadowAnswers(const PathState& p) {
   return p.reuse && p.reuse->shadowTraced;
 }
 
-// Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
-// lights with area (Veach 1997 sec. 9.2, power heuristic): what it adds unblocked and the
-// shadow ray that decides it (none where the left's answers: leftShadowAnswers), weighted
-// by the throughput and lobe split as they are at this vertex: by the lobes themselves at
-// the denoiser surface ('splitsHere'), by the path's share elsewhere.
-bool directLight(const TraceContext& ctx, const PathState& p, const Frame& frame,
-                 const BsdfVertex& bsdf, bool splitsHere, const VertexNumbers& u,
-                 ShadowRay& shadow) {
-  if (ctx.lights.empty()) return false;
+// Next-event estimation's light sample at the path's vertex, made before the BSDF is
+// prepared: vs.light, its direction in the shading frame and whether it leaves on the side
+// that frame says (vs.lit).
+void sampleLight(const TraceContext& ctx, const PathState& p, const VertexNumbers& u,
+                 VertexShading& vs) {
+  vs.lit = false;
+  if (ctx.lights.empty()) return;
   // A reused right sample draws the left's numbers: a light at infinity gives the left's
   // sample again, so it is taken from the record (stereo_reuse.h).
-  const LightSample ls = p.reuse && p.reuse->light.valid()
-                             ? p.reuse->light
-                             : ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
+  const LightSample& ls = vs.light =
+      p.reuse && p.reuse->light.valid()
+          ? p.reuse->light
+          : ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
   if (p.record && p.depth == 0 && ls.atInfinity()) p.record->light = ls;
-  if (!ls.valid()) return false;
-  const glm::vec3 wiL = frame.toLocal(ls.direction);
-  if (!sameSide(ls.direction, p.hit, wiL)) return false;
-  const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
-  const BsdfLobes& f = e.f;
+  if (!ls.valid()) return;
+  vs.wiL = vs.frame.toLocal(ls.direction);
+  vs.lit = sameSide(ls.direction, p.hit, vs.wiL);
+}
+
+// Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
+// lights with area (Veach 1997 sec. 9.2, power heuristic), from the light sample and the
+// BSDF's value and pdf towards it (vs.nee): what it adds unblocked and the shadow ray that
+// decides it (none where the left's answers: leftShadowAnswers), weighted by the throughput
+// and lobe split as they are at this vertex: by the lobes themselves at the denoiser
+// surface ('splitsHere'), by the path's share elsewhere.
+bool directLight(const TraceContext& ctx, const PathState& p, const VertexShading& vs,
+                 ShadowRay& shadow) {
+  const LightSample& ls = vs.light;
+  const BsdfLobes& f = vs.nee.f;
   if (f.total() == glm::vec3(0.0f)) return false;
   if (!leftShadowAnswers(p)) setShadowRay(shadow.ray, p.hit, ls);
-  const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, e.pdf);
-  glm::vec3 scale = ls.radiance * (std::abs(wiL.z) * w / ls.pdf);
+  const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, vs.nee.pdf);
+  glm::vec3 scale = ls.radiance * (std::abs(vs.wiL.z) * w / ls.pdf);
   // A light inside the medium the vertex is in is seen through that medium.
   const uint32_t medium = mediumAlong(ctx.scene, p, ls.direction);
   if (medium != MediumStack::kNone) scale *= transmittance(ctx.scene, medium, ls.distance);
-  if (splitsHere) {
+  if (vs.splitsHere) {
     shadow.diffuse = p.beta * (f.diffuse * scale);  // beta is 1 at the start
     shadow.specular = p.beta * (f.specular * scale);
   } else {
@@ -246,8 +255,8 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {
                                    int(depth) + 1 >= ctx.settings.russianRouletteDepth};
 }
 
-bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
-                     PathResult& result, ShadowRay& shadow, VertexShading& vs) {
+void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, PathResult& result,
+                 VertexShading& vs) {
   if (!p.albedoSet && !showsWhatIsBeyond(p.hit.bsdf)) {
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
@@ -258,12 +267,24 @@ bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers&
     result.diffuseAlbedo = p.beta * diffuseAlbedo(p.hit.bsdf);
     if (p.depth > 0) result.guide = p.hit.shadingNormal * float(p.hit.instance + 1);
   }
-  const Frame& frame = vs.frame = Frame::fromZ(p.hit.shadingNormal);
-  const BsdfVertex& bsdf = vs.bsdf = prepareBsdf(p.hit.bsdf, frame.toLocal(p.wo));
+  vs.frame = Frame::fromZ(p.hit.shadingNormal);
+  vs.wo = vs.frame.toLocal(p.wo);
+  sampleLight(ctx, p, u, vs);
+}
+
+void prepareVertex(const BsdfParams& params, VertexShading& vs) {
+  vs.bsdf = prepareBsdf(params, vs.wo);
+  if (vs.lit) vs.nee = evalBsdfAndPdf(vs.bsdf, vs.wiL);
+}
+
+bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
+                     PathResult& result, ShadowRay& shadow, VertexShading& vs) {
+  const Frame& frame = vs.frame;
+  const BsdfVertex& bsdf = vs.bsdf;
   if (p.depth == 0)
     result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
   vs.rays = {};
-  if (directLight(ctx, p, frame, bsdf, vs.splitsHere, u, shadow)) {
+  if (vs.lit && directLight(ctx, p, vs, shadow)) {
     if (leftShadowAnswers(p))
       resolveShadow(p, result, shadow, p.reuse->shadowBlocked);
     else
@@ -334,6 +355,8 @@ VertexRays shadeVertexTail(const TraceContext& ctx, PathState& p, const VertexNu
 VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce) {
   VertexShading vs;
+  startVertex(ctx, p, u, result, vs);
+  prepareVertex(p.hit.bsdf, vs);
   if (!shadeVertexHead(ctx, p, u, result, shadow, vs)) return vs.rays;
   return shadeVertexTail(ctx, p, u, result, vs, sampleBsdf(vs.bsdf, u.bsdf), bounce);
 }

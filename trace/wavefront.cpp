@@ -18,21 +18,34 @@ void drawAll(const TraceContext& ctx, WavefrontScratch& s) {
   drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
 }
 
-// Shading stage: every active path's vertex, in three passes: each vertex up to its BSDF
-// sample (shadeVertexHead, which queues its shadow ray), the BSDF stage (every vertex
-// without glass or layers sampled in SIMD lanes, trace/bsdf_lanes.h), then each vertex's
-// bounce ray (shadeVertexTail). Rays are written in place into their queue (dropped again
-// where the vertex made none) and the shadow rays copied into Embree's array after the
-// loop: a ray copied right after the scalar stores that built it stalled on store
+// Shading stage: every active path's vertex, in five passes: each vertex's start (its
+// frame and NEE's light sample), the BSDF stage's first half (every vertex without glass or
+// layers prepared, and evaluated towards its light, in SIMD lanes: trace/bsdf_lanes.h),
+// each vertex's head (NEE's shadow ray, stereo reuse), the second half (their BSDFs
+// sampled in lanes), then each vertex's bounce ray. Glass and layered vertices take the
+// scalar steps in the same passes. Rays are written in place into their queue (dropped
+// again where the vertex made none) and the shadow rays copied into Embree's array after
+// the loop: a ray copied right after the scalar stores that built it stalled on store
 // forwarding.
 void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
   s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
   s.bounceRays.clear(), s.bounceOwner.clear();
-  s.laneVertices.clear(), s.laneNumbers.clear();
+  s.prepareJobs.clear(), s.laneVertices.clear(), s.laneNumbers.clear();
   drawAll(ctx, s);
   const size_t n = s.active.size();
   s.shading.resize(n);
   s.sampling.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const uint32_t k = s.active[j];
+    VertexShading& vs = s.shading[j];
+    startVertex(ctx, s.paths[k], s.numbers[j], results[k], vs);
+    const BsdfParams& params = s.paths[k].hit.bsdf;
+    if (plainBsdf(params))
+      s.prepareJobs.push_back({&params, vs.wo, vs.wiL, &vs.bsdf, &vs.nee});
+    else
+      prepareVertex(params, vs);
+  }
+  prepareBrdfs(s.prepareJobs);
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.active[j];
     ShadowRay& shadow = s.shadows.emplace_back();

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "trace/bsdf_stage.h"
 #include "trace/path_stages.h"
 #include "trace/path_tracer.h"
 
@@ -35,6 +36,7 @@ struct WavefrontScratch {
   // vertices sampled in lanes, their numbers and samples, in the active paths' order.
   enum class Sampling : uint8_t { None, Lanes, One };
   std::vector<VertexShading> shading;
+  std::vector<BrdfPrepareJob> prepareJobs;
   std::vector<Sampling> sampling;
   std::vector<const BsdfVertex*> laneVertices;
   std::vector<glm::vec2> laneNumbers;

@@ -1,5 +1,6 @@
-// The BSDF stage (trace/bsdf_lanes.h): a vertex sampled in SIMD lanes gets the bits it gets
-// alone, and the lanes' sine and cosine are those of the angle to float precision.
+// The BSDF stage (trace/bsdf_stage.h, trace/bsdf_lanes.h): a vertex prepared, evaluated
+// and sampled in SIMD lanes gets the bits it gets alone, and the lanes' sine and cosine
+// are those of the angle to float precision.
 #include "trace/bsdf_lanes.h"
 
 #include <gtest/gtest.h>
@@ -88,8 +89,84 @@ TEST(BsdfLanes, SamplesInLanesEqualOneByOneBitForBit) {
   EXPECT_GT(valid, vertices.size() / 2);  // most vertices face the viewer and sample
 }
 
+// Every field a vertex has, compared (== on floats: bit for bit but for the sign of 0).
+void expectSameVertex(const BsdfVertex& a, const BsdfVertex& b, size_t i) {
+  EXPECT_EQ(a.wo, b.wo) << i;
+  EXPECT_EQ(a.alpha, b.alpha) << i;
+  EXPECT_EQ(a.f0, b.f0) << i;
+  EXPECT_EQ(a.diffuse, b.diffuse) << i;
+  EXPECT_EQ(a.f90, b.f90) << i;
+  EXPECT_EQ(a.fresnelWo, b.fresnelWo) << i;
+  EXPECT_EQ(a.g1OverCosWo, b.g1OverCosWo) << i;
+  EXPECT_EQ(a.specularProbability, b.specularProbability) << i;
+  EXPECT_EQ(a.glass, b.glass) << i;
+  EXPECT_EQ(a.brdfWeight, b.brdfWeight) << i;
+  EXPECT_EQ(a.glassProbability, b.glassProbability) << i;
+  EXPECT_EQ(a.reflectProbability, b.reflectProbability) << i;
+  EXPECT_EQ(a.eta, b.eta) << i;
+  EXPECT_EQ(a.tint, b.tint) << i;
+  EXPECT_EQ(a.thinWalled, b.thinWalled) << i;
+  EXPECT_EQ(a.layered, b.layered) << i;
+  EXPECT_EQ(a.coat, b.coat) << i;
+  EXPECT_EQ(a.coatAlpha, b.coatAlpha) << i;
+  EXPECT_EQ(a.coatG1OverCosWo, b.coatG1OverCosWo) << i;
+  EXPECT_EQ(a.coatFresnelWo, b.coatFresnelWo) << i;
+  EXPECT_EQ(a.coatTilted, b.coatTilted) << i;
+  EXPECT_EQ(a.coatNormal, b.coatNormal) << i;
+  EXPECT_EQ(a.coatWo, b.coatWo) << i;
+  EXPECT_EQ(a.sheenColor, b.sheenColor) << i;
+  EXPECT_EQ(a.sheenRoughness, b.sheenRoughness) << i;
+  EXPECT_EQ(a.sheenAlpha, b.sheenAlpha) << i;
+  EXPECT_EQ(a.sheenMax, b.sheenMax) << i;
+  EXPECT_EQ(a.sheenLambdaWo, b.sheenLambdaWo) << i;
+  EXPECT_EQ(a.sheenAlbedoWo, b.sheenAlbedoWo) << i;
+  EXPECT_EQ(a.coatProbability, b.coatProbability) << i;
+  EXPECT_EQ(a.sheenProbability, b.sheenProbability) << i;
+}
+
+TEST(BsdfLanes, VerticesPreparedAndEvaluatedInLanesEqualOneByOneBitForBit) {
+  // Parameters in and out of range, NaN and infinite ones (prepareBsdf's clamps), glTF's
+  // specular extension's f0 and f90, with views and light directions over the sphere.
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float odd[] = {-0.5f, 1.5f, NAN, INFINITY, 0.0f, 1.0f};
+  const auto value = [&] { return u(rng) < 0.15f ? odd[rng() % 6] : u(rng); };
+  const auto direction = [&] {
+    const float z = 2.0f * u(rng) - 1.0f, r = std::sqrt(1.0f - z * z), phi = 6.2831853f * u(rng);
+    return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+  };
+  constexpr size_t kCount = 1003;  // no multiple of 8
+  std::vector<BsdfParams> params(kCount);
+  std::vector<BsdfVertex> vertices(kCount);
+  std::vector<BsdfEval> evals(kCount);
+  std::vector<BrdfPrepareJob> jobs;
+  for (size_t i = 0; i < kCount; ++i) {
+    BsdfParams& p = params[i];
+    p.baseColor = {value(), value(), value()};
+    p.metallic = value();
+    p.roughness = value();
+    if (i % 3 == 0) p.dielectricF0 = {value(), value(), value()};
+    if (i % 5 == 0) p.dielectricF90 = value();
+    ASSERT_TRUE(plainBsdf(p));
+    jobs.push_back({&p, direction(), direction(), &vertices[i], &evals[i]});
+  }
+  prepareBrdfs(jobs);
+  size_t nonZero = 0;
+  for (size_t i = 0; i < kCount; ++i) {
+    const BsdfVertex one = prepareBsdf(params[i], jobs[i].wo);
+    expectSameVertex(vertices[i], one, i);
+    const BsdfEval e = evalBsdfAndPdf(one, jobs[i].wi);
+    EXPECT_EQ(evals[i].f.diffuse, e.f.diffuse) << i;
+    EXPECT_EQ(evals[i].f.specular, e.f.specular) << i;
+    EXPECT_EQ(evals[i].pdf, e.pdf) << i;
+    nonZero += e.pdf > 0.0f;
+  }
+  EXPECT_GT(nonZero, kCount / 8);  // a quarter of the pairs are both above the surface
+}
+
 TEST(BsdfLanes, AnEmptyBatchIsNothing) {
   sampleBrdfs({}, {}, {});
+  prepareBrdfs({});
 }
 
 }  // namespace
