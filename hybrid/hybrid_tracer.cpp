@@ -80,7 +80,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
                                           {cam.pose.position, centreRay, cam.jitter, s}, own)
                     : nullptr;
             tileReused += partner != nullptr;
-            batcher.addHit(ctx, hit, dir, own, record, partner);
+            batcher.addHit(hit, dir, own, record, partner);
           }
           tilePaths += spp;
           ++tileTraced;

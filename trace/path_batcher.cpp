@@ -8,17 +8,15 @@ void PathBatcher::beginPixel(size_t pixel) {
   pixels_.push_back({pixel, uint32_t(samples_.size()), 0});
 }
 
-void PathBatcher::addHit(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
+void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
                          const SampleCounters& counters, FirstBounce* record,
                          const FirstBounce* reuse) {
   ++pixels_.back().samples;
   if (reuse) {
-    PathResult& r = finished_.emplace_back();
-    if (finishReusedSample(ctx, hit, -dir, *reuse, r)) {
-      samples_.push_back({-1, int32_t(finished_.size() - 1), hit.emission});
-      return;
-    }
-    finished_.pop_back();
+    samples_.push_back({-1, int32_t(reused_.size()), hit.emission});
+    reused_.push_back(startPath(hit, -dir, counters, nullptr, reuse));
+    reusedFrom_.push_back({counters, reuse});
+    return;
   }
   samples_.push_back({int32_t(starts_.size()), -1, hit.emission});
   starts_.push_back({hit, -dir, counters, record, reuse});
@@ -29,7 +27,23 @@ void PathBatcher::addMiss(const glm::vec3& environment) {
   ++pixels_.back().samples;
 }
 
+// The reused samples that need no ray are done; the rest become paths from their start.
+void PathBatcher::finishReused(const TraceContext& ctx) {
+  finished_.resize(reused_.size());
+  done_.resize(reused_.size());
+  finishReusedSamples(ctx, reused_, finished_, done_, threadScratch());
+  for (Sample& s : samples_) {
+    if (s.finished < 0 || done_[size_t(s.finished)]) continue;
+    const PathState& p = reused_[size_t(s.finished)];
+    s.start = int32_t(starts_.size());
+    const ReusedFrom& from = reusedFrom_[size_t(s.finished)];
+    starts_.push_back({p.hit, p.wo, from.counters, nullptr, from.reuse});
+    s.finished = -1;
+  }
+}
+
 void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) {
+  if (!reused_.empty()) finishReused(ctx);
   results_.resize(starts_.size());
   continuePaths(ctx, starts_, results_, threadScratch());
   for (const Pixel& p : pixels_) {
@@ -48,7 +62,7 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) 
     totals.rejected += e.rejected;
     totals.ownBounces += e.ownBounces;
   }
-  starts_.clear(), finished_.clear(), samples_.clear(), pixels_.clear();
+  starts_.clear(), reused_.clear(), reusedFrom_.clear(), samples_.clear(), pixels_.clear();
 }
 
 }  // namespace photovr

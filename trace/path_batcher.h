@@ -1,8 +1,8 @@
 // Pixels' samples gathered into batches for the wavefront tracer (trace/wavefront.h), then
 // summed back per pixel in sample order, so that a pixel's estimate is the one a loop of
 // continuePath over its samples gives. The pure path tracer and the hybrid both feed it.
-// A reused right sample that needs no ray is finished as it is added (finishReusedSample)
-// and waits for its pixel's sum without a path.
+// A reused right sample that needs no ray is finished at the flush without a path
+// (finishReusedSamples), the batch's such samples together.
 #pragma once
 
 #include <cstdint>
@@ -23,10 +23,9 @@ class PathBatcher {
   void beginPixel(size_t pixel);
   // A sample whose primary ray along 'dir' hit 'hit': its path is continued (stereo reuse:
   // recording its first bounce in 'record', or reusing the left sample 'reuse', finished at
-  // once where it needs no ray).
-  void addHit(const TraceContext& ctx, const SurfaceHit& hit, const glm::vec3& dir,
-              const SampleCounters& counters, FirstBounce* record = nullptr,
-              const FirstBounce* reuse = nullptr);
+  // the flush without a path where it needs no ray).
+  void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters,
+              FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
   // A sample whose primary ray left the scene and saw 'environment'.
   void addMiss(const glm::vec3& environment);
   bool full() const { return samples_.size() >= kBatchPaths; }
@@ -40,9 +39,11 @@ class PathBatcher {
   void flush(const TraceContext& ctx, EyeImage& image, Totals& totals);
 
  private:
+  void finishReused(const TraceContext& ctx);
+
   struct Sample {
     int32_t start = -1;     // index into starts_ and results_ ...
-    int32_t finished = -1;  // ... or into finished_; both -1: a miss
+    int32_t finished = -1;  // ... or into reused_ and finished_; both -1: a miss
     glm::vec3 seen{0.0f};   // what the primary ray saw itself: emission, or the environment
   };
   struct Pixel {
@@ -51,7 +52,17 @@ class PathBatcher {
   };
   std::vector<PathStart> starts_;
   std::vector<PathResult> results_;
-  std::vector<PathResult> finished_;  // samples done when added (finishReusedSample)
+  // Reused right samples, finished at the flush without a path where they need no ray
+  // (finishReusedSamples), else continued as paths: their states, the left samples they
+  // reuse, their results and whether they were done.
+  struct ReusedFrom {
+    SampleCounters counters;
+    const FirstBounce* reuse = nullptr;
+  };
+  std::vector<PathState> reused_;
+  std::vector<ReusedFrom> reusedFrom_;
+  std::vector<PathResult> finished_;
+  std::vector<uint8_t> done_;
   std::vector<Sample> samples_;
   std::vector<Pixel> pixels_;
 };

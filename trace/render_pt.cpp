@@ -99,7 +99,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
                 : nullptr;
         counts.reused += partner != nullptr;
         ++counts.paths;
-        batcher.addHit(ctx, hit, dir, counters, record, partner);
+        batcher.addHit(hit, dir, counters, record, partner);
       }
     }
   batcher.flush(ctx, img, counts.traced);

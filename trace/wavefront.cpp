@@ -130,6 +130,34 @@ WavefrontScratch& threadScratch() {
   return scratch;
 }
 
+void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
+                         std::span<PathResult> results, std::span<uint8_t> done,
+                         WavefrontScratch& s) {
+  const size_t n = paths.size();
+  s.shading.resize(n);
+  s.prepareJobs.clear();
+  for (size_t i = 0; i < n; ++i) {
+    VertexShading& vs = s.shading[i];
+    results[i] = PathResult{};
+    startVertex(ctx, paths[i], paths[i].reuse->numbers, results[i], vs);
+    const BsdfParams& params = paths[i].hit.bsdf;
+    if (plainBsdf(params))
+      s.prepareJobs.push_back({&params, vs.wo, vs.wiL, &vs.bsdf, &vs.nee});
+    else
+      prepareVertex(params, vs);
+  }
+  prepareBrdfs(s.prepareJobs);
+  for (size_t i = 0; i < n; ++i) {
+    PathState& p = paths[i];
+    const VertexNumbers& u = p.reuse->numbers;  // the head may drop p.reuse
+    ShadowRay shadow;
+    VertexShading& vs = s.shading[i];
+    const bool bounces = shadeVertexHead(ctx, p, u, results[i], shadow, vs);
+    done[i] = !bounces && !vs.rays.shadow;
+    if (done[i]) finishPath(p, results[i]);
+  }
+}
+
 void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
                    std::span<PathResult> results, WavefrontScratch& s) {
   const size_t n = starts.size();

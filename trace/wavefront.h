@@ -55,6 +55,14 @@ struct WavefrontScratch {
 // This thread's scratch (thread_local: TBB tasks of one thread run one at a time).
 WavefrontScratch& threadScratch();
 
+// finishReusedSample for a batch of reused right samples, each paths[i] = startPath(hit, wo,
+// {}, nullptr, &reuse): done[i] and results[i] as finishReusedSample gives them, to the bit,
+// with the BSDF stage's first half in lanes (trace/bsdf_stage.h). paths[i] is left as the
+// head left it; a sample not done is to be continued as a path from its start.
+void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
+                         std::span<PathResult> results, std::span<uint8_t> done,
+                         WavefrontScratch& scratch);
+
 // continuePath for every start, results[i] for starts[i]; results.size() == starts.size().
 void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
                    std::span<PathResult> results, WavefrontScratch& scratch);

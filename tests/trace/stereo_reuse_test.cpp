@@ -465,23 +465,33 @@ struct ReuseCase {
   }
 };
 
-// PathBatcher finishes a reused sample where it is made when it needs no ray
-// (finishReusedSample): its result must be the batched path's to the bit, and it must hand
-// on exactly the samples whose batched paths traced a ray.
+// PathBatcher finishes a reused sample without a path when it needs no ray
+// (finishReusedSamples, the batch's together; finishReusedSample, one): its result must be
+// the batched path's to the bit, and it must hand on exactly the samples whose batched
+// paths traced a ray.
+bool sameResult(const PathResult& a, const PathResult& b) {
+  return std::memcmp(&a.radiance, &b.radiance, sizeof(glm::vec3)) == 0 &&
+         std::memcmp(&a.diffuse, &b.diffuse, sizeof(glm::vec3)) == 0 &&
+         a.specularAlbedo == b.specularAlbedo && a.albedo == b.albedo;
+}
+
 void expectFinishedWhereMadeAsInABatch(const TraceContext& ctx,
                                        const std::vector<PathStart>& starts,
                                        const std::vector<PathResult>& batched) {
+  std::vector<PathState> paths;
+  for (const PathStart& st : starts)
+    paths.push_back(startPath(st.hit, st.wo, st.counters, nullptr, st.reuse));
+  std::vector<PathResult> together(starts.size());
+  std::vector<uint8_t> doneTogether(starts.size());
+  finishReusedSamples(ctx, paths, together, doneTogether, threadScratch());
   size_t finished = 0, mismatched = 0;
   for (size_t i = 0; i < starts.size(); ++i) {
     PathResult lean;
     const bool done = finishReusedSample(ctx, starts[i].hit, starts[i].wo, *starts[i].reuse, lean);
     finished += done;
     const PathResult& b = batched[i];
-    if (done != (b.rays == 0)) ++mismatched;
-    if (done && (std::memcmp(&lean.radiance, &b.radiance, sizeof(glm::vec3)) != 0 ||
-                 std::memcmp(&lean.diffuse, &b.diffuse, sizeof(glm::vec3)) != 0 ||
-                 lean.specularAlbedo != b.specularAlbedo || lean.albedo != b.albedo))
-      ++mismatched;
+    if (done != (b.rays == 0) || done != (doneTogether[i] != 0)) ++mismatched;
+    if (done && (!sameResult(lean, b) || !sameResult(together[i], b))) ++mismatched;
   }
   EXPECT_EQ(mismatched, 0u);
   EXPECT_GT(finished, 0u);
