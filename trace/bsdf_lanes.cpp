@@ -57,29 +57,35 @@ __attribute__((target_clones("avx2", "default"))) void sampleLanes(BrdfLanes8* g
   }
 }
 
-// Eight parameter sets, views and light directions, and what they prepare to.
-struct alignas(32) PrepareLanes8 {
-  lanes::BrdfParamsOf<F8> params;
-  V3<F8> wo, wi;
-  BrdfVertexOf<F8> vertex;
-  V3<F8> tint;
-  lanes::BrdfEvalOf<F8> eval;
-};
-
-__attribute__((target_clones("avx2", "default"))) void prepareLanes(PrepareLanes8* groups,
-                                                                    size_t count) {
-  for (size_t g = 0; g < count; ++g) {
-    PrepareLanes8& l = groups[g];
-    l.vertex = lanes::prepareBrdfOf(l.params, l.wo, l.tint);
-    l.eval = lanes::evalBrdfPartsOf(l.vertex, l.wi).value;
-  }
-}
-
 void setLane(V3<F8>& to, size_t k, const glm::vec3& v) {
   to.x[k] = v.x, to.y[k] = v.y, to.z[k] = v.z;
 }
 glm::vec3 laneOf(const V3<F8>& v, size_t k) {
   return {v.x[k], v.y[k], v.z[k]};
+}
+
+// Eight parameter sets, views and light directions, and what they prepare to.
+struct alignas(32) PrepareLanes8 {
+  lanes::BrdfParamsOf<F8> params;
+  V3<F8> wo, wi, wi2;
+  BrdfVertexOf<F8> vertex;
+  V3<F8> tint;
+  lanes::BrdfEvalOf<F8> eval, eval2;
+};
+
+// 'second': evaluate at wi2 too.
+__attribute__((target_clones("avx2", "default"))) void prepareLanes(PrepareLanes8* groups,
+                                                                    size_t count, bool second) {
+  for (size_t g = 0; g < count; ++g) {
+    PrepareLanes8& l = groups[g];
+    l.vertex = lanes::prepareBrdfOf(l.params, l.wo, l.tint);
+    l.eval = lanes::evalBrdfPartsOf(l.vertex, l.wi).value;
+    if (second) l.eval2 = lanes::evalBrdfPartsOf(l.vertex, l.wi2).value;
+  }
+}
+
+BsdfEval evalOf(const lanes::BrdfEvalOf<F8>& e, size_t k) {
+  return {{laneOf(e.diffuse, k), laneOf(e.specular, k)}, e.pdf[k]};
 }
 
 // prepareBsdf's vertex for plain parameters from lane k: its BRDF terms, the tint, and the
@@ -102,6 +108,8 @@ void storeVertex(const PrepareLanes8& l, size_t k, BsdfVertex& v) {
 void prepareBrdfs(std::span<const BrdfPrepareJob> jobs) {
   const size_t n = jobs.size(), count = (n + 7) / 8;
   if (n == 0) return;
+  bool second = false;
+  for (const BrdfPrepareJob& job : jobs) second |= job.eval2 != nullptr;
   thread_local std::vector<PrepareLanes8> groups;
   groups.resize(count);
   for (size_t i = 0; i < count * 8; ++i) {
@@ -117,13 +125,15 @@ void prepareBrdfs(std::span<const BrdfPrepareJob> jobs) {
     l.params.dielectricF90[k] = p.dielectricF90;
     setLane(l.wo, k, job.wo);
     setLane(l.wi, k, job.wi);
+    setLane(l.wi2, k, job.wi2);
   }
-  prepareLanes(groups.data(), count);
+  prepareLanes(groups.data(), count, second);
   for (size_t i = 0; i < n; ++i) {
     const PrepareLanes8& l = groups[i / 8];
     const size_t k = i % 8;
     storeVertex(l, k, *jobs[i].vertex);
-    *jobs[i].eval = {{laneOf(l.eval.diffuse, k), laneOf(l.eval.specular, k)}, l.eval.pdf[k]};
+    *jobs[i].eval = evalOf(l.eval, k);
+    if (jobs[i].eval2) *jobs[i].eval2 = evalOf(l.eval2, k);
   }
 }
 

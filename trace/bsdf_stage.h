@@ -24,13 +24,16 @@ inline bool plainBrdf(const BsdfVertex& v) {
 }
 
 // The BSDF stage's first half: *vertex = prepareBsdf(*params, wo) and *eval =
-// evalBsdfAndPdf(*vertex, wi) (NEE's light direction) for parameters without glass or
-// layers (plainBsdf), eight at a time, to the bit.
+// evalBsdfAndPdf(*vertex, wi) (NEE's light direction), and where eval2 is set *eval2 at wi2
+// (a reused right sample's bounce direction), for parameters without glass or layers
+// (plainBsdf), eight at a time, to the bit.
 struct BrdfPrepareJob {
   const BsdfParams* params;
   glm::vec3 wo, wi;
   BsdfVertex* vertex;
   BsdfEval* eval;
+  glm::vec3 wi2{0.0f};
+  BsdfEval* eval2 = nullptr;
 };
 void prepareBrdfs(std::span<const BrdfPrepareJob> jobs);
 

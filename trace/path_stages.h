@@ -79,8 +79,8 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNum
 // shadeVertex in steps around its BSDF, so that the batched tracer prepares, evaluates and
 // samples the BSDFs of a whole bounce at once (trace/bsdf_lanes.h): startVertex (the
 // albedos, the frame, NEE's light sample), prepareVertex (the BSDF, and its value and pdf
-// towards the light), shadeVertexHead (NEE's shadow ray, stereo reuse's term) returns
-// whether the vertex goes on to a bounce ray; if so, shadeVertexTail takes
+// towards the light and a reused bounce's direction), shadeVertexHead (NEE's shadow ray, stereo
+// reuse's term) returns whether the vertex goes on to a bounce ray; if so, shadeVertexTail takes
 // sampleBsdf(vs.bsdf, u.bsdf) and makes it. shadeVertex is the steps in that order.
 struct VertexShading {
   Frame frame;
@@ -88,8 +88,12 @@ struct VertexShading {
   LightSample light;   // NEE's, with its direction in the shading frame ...
   glm::vec3 wiL{0.0f};
   bool lit = false;  // ... valid and on the side the frame says: nee holds the BSDF there
+  // Stereo reuse: the left path's bounce direction in this vertex's frame, where it has one
+  // to reuse, and the BSDF's value and pdf there (reuseBounce).
+  bool reusing = false;
+  glm::vec3 wiReused{0.0f};
   BsdfVertex bsdf;
-  BsdfEval nee;
+  BsdfEval nee, reused;
   VertexRays rays;  // the head's shadow ray
   bool splitsHere = false;
 };

@@ -172,14 +172,14 @@ void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& sha
 // derives it): no ray; the left's direction and the radiance it brought, re-weighted by
 // this vertex's BSDF, and the emission it found MIS-weighted against this vertex's NEE;
 // only if the direction is the reused term's ('split'), else the right sample's own.
-void reuseBounce(const TraceContext& ctx, const PathState& p, const Frame& frame,
-                 const BsdfVertex& bsdf, const ReuseSplit& split, PathResult& result) {
+void reuseBounce(const TraceContext& ctx, const PathState& p, const VertexShading& vs,
+                 const ReuseSplit& split, PathResult& result) {
   const FirstBounce& b = *p.reuse;
-  if (!b.sampled) return;  // the left path's bounce term was 0 (no valid sample, or rejected)
+  if (!vs.reusing) return;  // the left path's bounce term was 0 (no valid sample, or rejected)
   const glm::vec3& wi = b.dir;
   if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return;
-  const glm::vec3 wiL = frame.toLocal(wi);
-  const BsdfEval e = evalBsdfAndPdf(bsdf, wiL);
+  const glm::vec3& wiL = vs.wiReused;
+  const BsdfEval& e = vs.reused;
   if (!split.reused(wi, e.pdf)) return;
   glm::vec3 incoming = b.beyond;
   if (b.emitted != glm::vec3(0.0f)) {
@@ -270,11 +270,14 @@ void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, 
   vs.frame = Frame::fromZ(p.hit.shadingNormal);
   vs.wo = vs.frame.toLocal(p.wo);
   sampleLight(ctx, p, u, vs);
+  vs.reusing = p.reuse && p.reuse->sampled;
+  if (vs.reusing) vs.wiReused = vs.frame.toLocal(p.reuse->dir);
 }
 
 void prepareVertex(const BsdfParams& params, VertexShading& vs) {
   vs.bsdf = prepareBsdf(params, vs.wo);
   if (vs.lit) vs.nee = evalBsdfAndPdf(vs.bsdf, vs.wiL);
+  if (vs.reusing) vs.reused = evalBsdfAndPdf(vs.bsdf, vs.wiReused);
 }
 
 bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
@@ -298,7 +301,7 @@ bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers&
   }
   if (!p.reuse) return true;
   const ReuseSplit split(*p.reuse, p.hit, bsdf, p.wo);
-  reuseBounce(ctx, p, frame, bsdf, split, result);
+  reuseBounce(ctx, p, vs, split, result);
   if (split.whole()) return false;
   // A reused right sample traces its own bounce only where the reused term does not hold
   // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the

@@ -40,7 +40,9 @@ void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontS
     VertexShading& vs = s.shading[j];
     startVertex(ctx, s.paths[k], s.numbers[j], results[k], vs);
     const BsdfParams& params = s.paths[k].hit.bsdf;
-    if (plainBsdf(params))
+    // A reused right sample that needs a ray is rare here (finishReusedSamples takes the
+    // others): its second direction is evaluated one by one.
+    if (plainBsdf(params) && !vs.reusing)
       s.prepareJobs.push_back({&params, vs.wo, vs.wiL, &vs.bsdf, &vs.nee});
     else
       prepareVertex(params, vs);
@@ -142,7 +144,8 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
     startVertex(ctx, paths[i], paths[i].reuse->numbers, results[i], vs);
     const BsdfParams& params = paths[i].hit.bsdf;
     if (plainBsdf(params))
-      s.prepareJobs.push_back({&params, vs.wo, vs.wiL, &vs.bsdf, &vs.nee});
+      s.prepareJobs.push_back({&params, vs.wo, vs.wiL, &vs.bsdf, &vs.nee, vs.wiReused,
+                               vs.reusing ? &vs.reused : nullptr});
     else
       prepareVertex(params, vs);
   }

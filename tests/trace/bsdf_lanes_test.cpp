@@ -138,7 +138,7 @@ TEST(BsdfLanes, VerticesPreparedAndEvaluatedInLanesEqualOneByOneBitForBit) {
   constexpr size_t kCount = 1003;  // no multiple of 8
   std::vector<BsdfParams> params(kCount);
   std::vector<BsdfVertex> vertices(kCount);
-  std::vector<BsdfEval> evals(kCount);
+  std::vector<BsdfEval> evals(kCount), seconds(kCount);
   std::vector<BrdfPrepareJob> jobs;
   for (size_t i = 0; i < kCount; ++i) {
     BsdfParams& p = params[i];
@@ -148,7 +148,9 @@ TEST(BsdfLanes, VerticesPreparedAndEvaluatedInLanesEqualOneByOneBitForBit) {
     if (i % 3 == 0) p.dielectricF0 = {value(), value(), value()};
     if (i % 5 == 0) p.dielectricF90 = value();
     ASSERT_TRUE(plainBsdf(p));
-    jobs.push_back({&p, direction(), direction(), &vertices[i], &evals[i]});
+    // Every other vertex also at a second direction (a reused sample's bounce).
+    jobs.push_back({&p, direction(), direction(), &vertices[i], &evals[i], direction(),
+                    i % 2 ? &seconds[i] : nullptr});
   }
   prepareBrdfs(jobs);
   size_t nonZero = 0;
@@ -159,6 +161,10 @@ TEST(BsdfLanes, VerticesPreparedAndEvaluatedInLanesEqualOneByOneBitForBit) {
     EXPECT_EQ(evals[i].f.diffuse, e.f.diffuse) << i;
     EXPECT_EQ(evals[i].f.specular, e.f.specular) << i;
     EXPECT_EQ(evals[i].pdf, e.pdf) << i;
+    const BsdfEval second = i % 2 ? evalBsdfAndPdf(one, jobs[i].wi2) : BsdfEval{};
+    EXPECT_EQ(seconds[i].f.diffuse, second.f.diffuse) << i;
+    EXPECT_EQ(seconds[i].f.specular, second.f.specular) << i;
+    EXPECT_EQ(seconds[i].pdf, second.pdf) << i;
     nonZero += e.pdf > 0.0f;
   }
   EXPECT_GT(nonZero, kCount / 8);  // a quarter of the pairs are both above the surface
