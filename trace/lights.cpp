@@ -182,83 +182,78 @@ void LightSet::addStandIns(const WorkSkips& skips, std::vector<float>& weights) 
   weights.insert(weights.end(), standIns_.size(), mean);
 }
 
-LightSample LightSet::sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u) const {
-  LightSample s;
+void LightSet::sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u,
+                             LightSample& s) const {
   if (kind == StandIn::Environment) {
     s.direction = sampleUniformSphere(u);
     s.distance = kInfinity;
     s.pdf = 1.0f / (4.0f * kPi);
-    return s;  // radiance 0: the shadow ray is still cast
+    return;  // radiance 0: the shadow ray is still cast
   }
   const glm::vec3 d = sceneCentre_ - point;
   const float dist = glm::length(d);
-  if (!(dist > 0.0f)) return s;
+  if (!(dist > 0.0f)) return;
   s.direction = d / dist;
   s.distance = dist;
   s.isDelta = kind == StandIn::Punctual;
   s.isArea = kind == StandIn::Area;
   s.pdf = 1.0f;  // nominal: the radiance is 0 whatever the density
-  return s;
 }
 
-LightSample LightSet::samplePunctual(const Light& l, const glm::vec3& point) const {
-  LightSample s;
+void LightSet::samplePunctual(const Light& l, const glm::vec3& point, LightSample& s) const {
   s.isDelta = true;
   if (l.type == Light::Type::Directional) {
     s.direction = -glm::normalize(l.direction);
     s.distance = kInfinity;
     s.radiance = l.color * l.intensity;  // lux: irradiance normal to the light
-    return s;
+    return;
   }
   const glm::vec3 d = l.position - point;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return s;
+  if (!(dist2 > 0.0f)) return;
   s.distance = std::sqrt(dist2);
   s.direction = d / s.distance;
   float scale = rangeWindow(s.distance, l.range) / dist2;  // candela / d^2 = irradiance
   if (l.type == Light::Type::Spot) scale *= spotFalloff(l, -s.direction);
   s.radiance = l.color * l.intensity * scale;
-  return s;
 }
 
-LightSample LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& point,
-                                     glm::vec2 u) const {
+void LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u,
+                              LightSample& s) const {
   // Uniform point on the triangle (Pharr, Jakob, Humphreys, pbrt 3rd ed. §13.6.4).
   const float su = std::sqrt(u.x);
   const float b1 = su * (1.0f - u.y), b2 = su * u.y;
   const glm::vec3 p = tri.p0 + b1 * tri.e1 + b2 * tri.e2;
-  LightSample s;
   s.isArea = true;
   const glm::vec3 d = p - point;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.0f)) return s;
+  if (!(dist2 > 0.0f)) return;
   s.distance = std::sqrt(dist2);
   s.direction = d / s.distance;
   const float cosLight = std::abs(glm::dot(tri.normal, s.direction));
-  if (!(cosLight > 0.0f)) return s;
+  if (!(cosLight > 0.0f)) return;
   // Times the emitter's coverage: BSDF rays meet a BLEND emitter with probability alpha and
   // never a MASK hole, so NEE counts it as much (without it, NEE + MIS counted a BLEND
   // emitter's light between alpha and 1 times).
   s.radiance = emissionAt(scene_, tri.instance, tri.triangle, b1, b2, tri.normal, s.direction) *
                coverageAt(scene_, tri.instance, tri.triangle, b1, b2);
-  if (s.radiance == glm::vec3(0.0f)) return s;
+  if (s.radiance == glm::vec3(0.0f)) return;
   s.pdf = dist2 / (cosLight * tri.area);  // area density converted to solid angle
-  return s;
 }
 
-LightSample LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u) const {
-  if (empty()) return {};
+void LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u, LightSample& s) const {
+  s = LightSample{};
+  if (empty()) return;
   const Distribution1D::Discrete pick = selection_.sampleDiscrete(uSelect);
   const int n = int(punctual_.size()), m = int(triangles_.size());
   const int firstStandIn = n + m + (environmentIndex_ >= 0 ? 1 : 0);
-  LightSample s;
   if (pick.index >= firstStandIn) {
-    s = sampleStandIn(standIns_[pick.index - firstStandIn], point, u);
+    sampleStandIn(standIns_[pick.index - firstStandIn], point, u, s);
   } else if (pick.index < n) {
-    s = samplePunctual(*punctual_[pick.index], point);
+    samplePunctual(*punctual_[pick.index], point, s);
     s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;
   } else if (pick.index < n + m) {
-    s = sampleTriangle(triangles_[pick.index - n], point, u);
+    sampleTriangle(triangles_[pick.index - n], point, u, s);
   } else {
     const EnvironmentSample e = environment_.sample(u);
     s.direction = e.direction;
@@ -267,7 +262,6 @@ LightSample LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u)
     s.pdf = e.pdf;
   }
   s.pdf *= pick.pmf;
-  return s;
 }
 
 float LightSet::pdfArea(uint32_t instance, uint32_t triangle, const glm::vec3& from,

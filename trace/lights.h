@@ -44,7 +44,14 @@ class LightSet {
   size_t areaTriangleCount() const { return triangles_.size(); }
   size_t standInCount() const { return standIns_.size(); }
 
-  LightSample sample(const glm::vec3& point, float uSelect, glm::vec2 u) const;
+  // Written into 'out': a sample returned through the stack stalled its reader on store
+  // forwarding (Frame::setZ).
+  void sample(const glm::vec3& point, float uSelect, glm::vec2 u, LightSample& out) const;
+  LightSample sample(const glm::vec3& point, float uSelect, glm::vec2 u) const {
+    LightSample s;
+    sample(point, uSelect, u, s);
+    return s;
+  }
 
   // Densities of sample() for a direction found by BSDF sampling (for MIS):
   // an emissive triangle hit at 'lightPoint' with geometric normal 'lightNormal' ...
@@ -65,11 +72,13 @@ class LightSet {
   // Index into triangles_ of (instance, triangle), or kNoLight: a flat table instead of a
   // hash map, since pdfArea() runs for every BSDF ray that lands on an emitter.
   uint32_t lightIndex(uint32_t instance, uint32_t triangle) const;
-  LightSample samplePunctual(const Light& light, const glm::vec3& point) const;
-  LightSample sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u) const;
+  // Each fills a default LightSample 's'.
+  void samplePunctual(const Light& light, const glm::vec3& point, LightSample& s) const;
+  void sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u,
+                      LightSample& s) const;
   // A light class the scene lacks, sampled like a real light of that class but dark.
   enum class StandIn { Punctual, Area, Environment };
-  LightSample sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u) const;
+  void sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u, LightSample& s) const;
   void addAreaTriangles(std::vector<float>& weights);
   void addEnvironment(float radius, std::vector<float>& weights);
   void addStandIns(const WorkSkips& skips, std::vector<float>& weights);

@@ -88,10 +88,11 @@ void sampleLight(const TraceContext& ctx, const PathState& p, const VertexNumber
   if (ctx.lights.empty()) return;
   // A reused right sample draws the left's numbers: a light at infinity gives the left's
   // sample again, so it is taken from the record (stereo_reuse.h).
-  const LightSample& ls = vs.light =
-      p.reuse && p.reuse->light.valid()
-          ? p.reuse->light
-          : ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint);
+  LightSample& ls = vs.light;
+  if (p.reuse && p.reuse->light.valid())
+    ls = p.reuse->light;
+  else
+    ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint, ls);
   if (p.record && p.depth == 0 && ls.atInfinity()) p.record->light = ls;
   if (!ls.valid()) return;
   vs.wiL = vs.frame.toLocal(ls.direction);
@@ -267,7 +268,7 @@ void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, 
     result.diffuseAlbedo = p.beta * diffuseAlbedo(p.hit.bsdf);
     if (p.depth > 0) result.guide = p.hit.shadingNormal * float(p.hit.instance + 1);
   }
-  vs.frame = Frame::fromZ(p.hit.shadingNormal);
+  vs.frame.setZ(p.hit.shadingNormal);
   vs.wo = vs.frame.toLocal(p.wo);
   sampleLight(ctx, p, u, vs);
   vs.reusing = p.reuse && p.reuse->sampled;

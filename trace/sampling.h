@@ -69,9 +69,15 @@ struct Frame {
 
   static Frame fromZ(const glm::vec3& n) {
     Frame f;
-    f.z = n;
-    orthonormalBasis(n, f.x, f.y);
+    f.setZ(n);
     return f;
+  }
+  // fromZ(n) in place: a frame assigned from fromZ went through the stack, and its copy's
+  // 16-byte loads of what orthonormalBasis stored in 8 and 4 stalled on store forwarding
+  // (a quarter of startVertex's time).
+  void setZ(const glm::vec3& n) {
+    z = n;
+    orthonormalBasis(n, x, y);
   }
   glm::vec3 toLocal(const glm::vec3& v) const { return {dot(v, x), dot(v, y), dot(v, z)}; }
   glm::vec3 toWorld(const glm::vec3& v) const { return v.x * x + v.y * y + v.z * z; }
