@@ -18,10 +18,6 @@ glm::mat3 TextureTransform::matrix() const {
   return t * r * sc;
 }
 
-bool TextureTransform::isIdentity() const {
-  return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
-}
-
 bool Material::isEmissive() const {
   if (unlit) return false;  // its radiance is its base colour, and it is no light
   const glm::vec3 e = emission();

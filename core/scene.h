@@ -34,7 +34,9 @@ struct TextureTransform {
   float rotation = 0.0f;  // radians, counter-clockwise in UV space as the extension defines
   glm::vec2 scale{1.0f};
   glm::mat3 matrix() const;  // the 3x3 uv transform above
-  bool isIdentity() const;
+  bool isIdentity() const {
+    return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+  }
 };
 
 struct TextureRef {

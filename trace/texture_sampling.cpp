@@ -51,14 +51,19 @@ glm::vec4 texel(const Texture& t, int x, int y, bool srgb) {
   return texelAt(t, wrapIndex(x, t.width, t.wrapS), wrapIndex(y, t.height, t.wrapT), srgb);
 }
 
+// fmod(x, 4096): x itself inside (-4096, 4096), as fmod returns it there exactly, without the
+// libm call that every other coordinate would pay.
+float saneRange(float x) {
+  return std::abs(x) < 4096.0f ? x : std::fmod(x, 4096.0f);
+}
+
 }  // namespace
 
 glm::vec4 sampleTexture(const Texture& t, glm::vec2 uv, bool srgb) {
   if (t.width <= 0 || t.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y))
     return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   // Keep uv in a sane range before converting to int: wrap modes are periodic anyway.
-  const glm::vec2 p =
-      glm::vec2(std::fmod(uv.x, 4096.0f) * t.width, std::fmod(uv.y, 4096.0f) * t.height);
+  const glm::vec2 p = glm::vec2(saneRange(uv.x) * t.width, saneRange(uv.y) * t.height);
   if (t.nearest) return texel(t, int(std::floor(p.x)), int(std::floor(p.y)), srgb);
   const glm::vec2 q = p - 0.5f;
   const int x0 = int(std::floor(q.x)), y0 = int(std::floor(q.y));
@@ -76,8 +81,11 @@ glm::vec4 sampleSlotTexture(const Scene& scene, const TextureRef& ref, glm::vec2
                             bool srgb, glm::vec4 fallback) {
   if (!ref.valid() || ref.texture >= int(scene.textures.size())) return fallback;
   const glm::vec2 uv = ref.texCoord == 1 ? uv1 : uv0;
-  const glm::vec3 t = ref.transform.matrix() * glm::vec3(uv, 1.0f);
-  return sampleTexture(scene.textures[ref.texture], glm::vec2(t), srgb);
+  // An identity transform leaves finite coordinates as they are (and sampleTexture returns
+  // its black for every non-finite pair either way): no matrix built per sample.
+  const glm::vec2 t =
+      ref.transform.isIdentity() ? uv : glm::vec2(ref.transform.matrix() * glm::vec3(uv, 1.0f));
+  return sampleTexture(scene.textures[ref.texture], t, srgb);
 }
 
 }  // namespace photovr
