@@ -14,12 +14,12 @@ void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
   ++pixels_.back().samples;
   if (reuse) {
     samples_.push_back({-1, int32_t(reused_.size()), hit.emission});
-    reused_.push_back(startPath(hit, -dir, counters, nullptr, reuse));
+    startPath(reused_.emplace_back(), hit, -dir, counters, nullptr, reuse);
     reusedFrom_.push_back({counters, reuse});
     return;
   }
-  samples_.push_back({int32_t(starts_.size()), -1, hit.emission});
-  starts_.push_back({hit, -dir, counters, record, reuse});
+  samples_.push_back({int32_t(paths_.size()), -1, hit.emission});
+  startPath(paths_.emplace_back(), hit, -dir, counters, record);
 }
 
 void PathBatcher::addMiss(const glm::vec3& environment) {
@@ -35,17 +35,17 @@ void PathBatcher::finishReused(const TraceContext& ctx) {
   for (Sample& s : samples_) {
     if (s.finished < 0 || done_[size_t(s.finished)]) continue;
     const PathState& p = reused_[size_t(s.finished)];
-    s.start = int32_t(starts_.size());
+    s.start = int32_t(paths_.size());
     const ReusedFrom& from = reusedFrom_[size_t(s.finished)];
-    starts_.push_back({p.hit, p.wo, from.counters, nullptr, from.reuse});
+    startPath(paths_.emplace_back(), p.hit, p.wo, from.counters, nullptr, from.reuse);
     s.finished = -1;
   }
 }
 
 void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) {
   if (!reused_.empty()) finishReused(ctx);
-  results_.resize(starts_.size());
-  continuePaths(ctx, starts_, results_, threadScratch());
+  results_.resize(paths_.size());
+  continuePaths(ctx, std::span<PathState>(paths_), results_, threadScratch());
   for (const Pixel& p : pixels_) {
     PixelEstimate e;
     for (uint32_t j = p.firstSample; j < p.firstSample + p.samples; ++j) {
@@ -62,7 +62,7 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) 
     totals.rejected += e.rejected;
     totals.ownBounces += e.ownBounces;
   }
-  starts_.clear(), reused_.clear(), reusedFrom_.clear(), samples_.clear(), pixels_.clear();
+  paths_.clear(), reused_.clear(), reusedFrom_.clear(), samples_.clear(), pixels_.clear();
 }
 
 }  // namespace photovr

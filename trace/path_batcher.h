@@ -42,7 +42,7 @@ class PathBatcher {
   void finishReused(const TraceContext& ctx);
 
   struct Sample {
-    int32_t start = -1;     // index into starts_ and results_ ...
+    int32_t start = -1;     // index into paths_ and results_ ...
     int32_t finished = -1;  // ... or into reused_ and finished_; both -1: a miss
     glm::vec3 seen{0.0f};   // what the primary ray saw itself: emission, or the environment
   };
@@ -50,7 +50,9 @@ class PathBatcher {
     size_t index = 0;
     uint32_t firstSample = 0, samples = 0;
   };
-  std::vector<PathStart> starts_;
+  // The paths to continue, started where they travel (startPath in place: no start and no
+  // state copied; spheres' tracer spent 5 % copying them) and their results.
+  std::vector<PathState> paths_;
   std::vector<PathResult> results_;
   // Reused right samples, finished at the flush without a path where they need no ray
   // (finishReusedSamples), else continued as paths: their states, the left samples they

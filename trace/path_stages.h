@@ -70,6 +70,11 @@ struct VertexRays {
 // 'record', 'reuse': see PathState (at most one of them).
 PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
                     FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr);
+// The same into a default-constructed 'path', where it is to travel (a PathState is ~400
+// bytes: PathBatcher builds its paths in place instead of copying starts and states).
+void startPath(PathState& path, const SurfaceHit& hit, const glm::vec3& wo,
+               const SampleCounters& counters, FirstBounce* record = nullptr,
+               const FirstBounce* reuse = nullptr);
 // The draws a vertex at 'depth' makes (drawVertexNumbers, drawBatchNumbers).
 VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).

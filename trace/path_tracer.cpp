@@ -234,6 +234,12 @@ void absorbAlong(const Scene& scene, const PathState& p, const TraceHit& th, con
 PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCounters& counters,
                     FirstBounce* record, const FirstBounce* reuse) {
   PathState p;
+  startPath(p, hit, wo, counters, record, reuse);
+  return p;
+}
+
+void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
+               const SampleCounters& counters, FirstBounce* record, const FirstBounce* reuse) {
   p.hit = hit;
   p.wo = wo;
   p.sampler = reuse ? reuse->sampler : PathSampler::make(counters);
@@ -248,7 +254,6 @@ PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCoun
     record->instance = hit.instance;
     record->sampler = p.sampler;
   }
-  return p;
 }
 
 VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {

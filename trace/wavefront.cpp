@@ -9,12 +9,12 @@ using Sampling = WavefrontScratch::Sampling;
 
 // Sampling stage: the numbers of every active path's vertex, in one vectorised pass (all
 // active paths are at the same depth: they start together and advance a bounce a step).
-void drawAll(const TraceContext& ctx, WavefrontScratch& s) {
+void drawAll(const TraceContext& ctx, std::span<const PathState> paths, WavefrontScratch& s) {
   const size_t n = s.active.size();
   s.samplers.resize(n);
   s.numbers.resize(n);
-  for (size_t j = 0; j < n; ++j) s.samplers[j] = s.paths[s.active[j]].sampler;
-  const uint32_t depth = s.paths[s.active[0]].depth;
+  for (size_t j = 0; j < n; ++j) s.samplers[j] = paths[s.active[j]].sampler;
+  const uint32_t depth = paths[s.active[0]].depth;
   drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
 }
 
@@ -49,19 +49,20 @@ void queuePrepare(const BsdfParams& params, VertexShading& vs, bool reused, Wave
 // again where the vertex made none) and the shadow rays copied into Embree's array after
 // the loop: a ray copied right after the scalar stores that built it stalled on store
 // forwarding.
-void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+void shadeAll(const TraceContext& ctx, std::span<PathState> paths, std::span<PathResult> results,
+              WavefrontScratch& s) {
   s.shadows.clear(), s.shadowOwner.clear(), s.shadowRays.clear();
   s.bounceRays.clear(), s.bounceOwner.clear();
   s.prepareJobs.clear(), s.laneVertices.clear(), s.laneNumbers.clear();
-  drawAll(ctx, s);
+  drawAll(ctx, paths, s);
   const size_t n = s.active.size();
   growTo(s.shading, n);
   growTo(s.sampling, n);
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.active[j];
     VertexShading& vs = s.shading[j];
-    startVertex(ctx, s.paths[k], s.numbers[j], results[k], vs);
-    const BsdfParams& params = s.paths[k].hit.bsdf;
+    startVertex(ctx, paths[k], s.numbers[j], results[k], vs);
+    const BsdfParams& params = paths[k].hit.bsdf;
     // A reused right sample that needs a ray is rare here (finishReusedSamples takes the
     // others): its second direction is evaluated one by one.
     if (plainBsdf(params) && !vs.reusing)
@@ -74,7 +75,7 @@ void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontS
     const uint32_t k = s.active[j];
     ShadowRay& shadow = s.shadows.emplace_back();
     VertexShading& vs = s.shading[j];
-    const bool bounces = shadeVertexHead(ctx, s.paths[k], s.numbers[j], results[k], shadow, vs);
+    const bool bounces = shadeVertexHead(ctx, paths[k], s.numbers[j], results[k], shadow, vs);
     if (vs.rays.shadow)
       s.shadowOwner.push_back(k);
     else
@@ -98,19 +99,20 @@ void shadeAll(const TraceContext& ctx, std::span<PathResult> results, WavefrontS
     const BsdfSample bs = s.sampling[j] == Sampling::Lanes ? s.laneSamples[lane++]
                                                            : sampleBsdf(vs.bsdf, s.numbers[j].bsdf);
     BatchRay& bounce = s.bounceRays.emplace_back().ray;
-    if (shadeVertexTail(ctx, s.paths[k], s.numbers[j], results[k], vs, bs, bounce).bounce)
+    if (shadeVertexTail(ctx, paths[k], s.numbers[j], results[k], vs, bs, bounce).bounce)
       s.bounceOwner.push_back(k);
     else
       s.bounceRays.pop_back();
   }
 }
 
-void traceShadows(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+void traceShadows(const TraceContext& ctx, std::span<PathState> paths,
+                  std::span<PathResult> results, WavefrontScratch& s) {
   const size_t n = s.shadowRays.size();
   ctx.embree.occludedBatch(s.shadowRays.data(), n, ctx.settings.batchCall);
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.shadowOwner[j];
-    resolveShadow(s.paths[k], results[k], s.shadows[j], s.shadowRays[j].blocked());
+    resolveShadow(paths[k], results[k], s.shadows[j], s.shadowRays[j].blocked());
   }
 }
 
@@ -134,7 +136,8 @@ void rebuildGeometry(const TraceContext& ctx, WavefrontScratch& s) {
   hitGeometries(ctx.scene, s.hits, s.geometry);
 }
 
-void traceBounces(const TraceContext& ctx, std::span<PathResult> results, WavefrontScratch& s) {
+void traceBounces(const TraceContext& ctx, std::span<PathState> paths,
+                  std::span<PathResult> results, WavefrontScratch& s) {
   const size_t n = s.bounceRays.size();
   ctx.embree.intersectBatch(s.bounceRays.data(), n, ctx.settings.batchCall);
   rebuildGeometry(ctx, s);
@@ -142,7 +145,7 @@ void traceBounces(const TraceContext& ctx, std::span<PathResult> results, Wavefr
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.bounceOwner[j];
     const HitGeometry& g = s.hitOf[j] == ~0u ? HitGeometry{} : s.geometry[s.hitOf[j]];
-    if (advancePath(ctx, s.paths[k], results[k], s.found[j], g)) s.next.push_back(k);
+    if (advancePath(ctx, paths[k], results[k], s.found[j], g)) s.next.push_back(k);
   }
   s.active.swap(s.next);
 }
@@ -182,23 +185,32 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
   }
 }
 
-void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
+void continuePaths(const TraceContext& ctx, std::span<PathState> paths,
                    std::span<PathResult> results, WavefrontScratch& s) {
-  const size_t n = starts.size();
-  s.paths.resize(n);
+  const size_t n = paths.size();
   s.active.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    const PathStart& st = starts[k];
-    s.paths[k] = startPath(st.hit, st.wo, st.counters, st.record, st.reuse);
     results[k] = PathResult{};
     s.active[k] = uint32_t(k);
   }
   while (!s.active.empty()) {
-    shadeAll(ctx, results, s);
-    traceShadows(ctx, results, s);
-    traceBounces(ctx, results, s);
+    shadeAll(ctx, paths, results, s);
+    traceShadows(ctx, paths, results, s);
+    traceBounces(ctx, paths, results, s);
   }
-  for (size_t k = 0; k < n; ++k) finishPath(s.paths[k], results[k]);
+  for (size_t k = 0; k < n; ++k) finishPath(paths[k], results[k]);
+}
+
+void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
+                   std::span<PathResult> results, WavefrontScratch& s) {
+  const size_t n = starts.size();
+  s.paths.clear();
+  s.paths.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const PathStart& st = starts[k];
+    startPath(s.paths[k], st.hit, st.wo, st.counters, st.record, st.reuse);
+  }
+  continuePaths(ctx, std::span<PathState>(s.paths), results, s);
 }
 
 }  // namespace photovr

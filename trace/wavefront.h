@@ -28,7 +28,7 @@ struct PathStart {
 
 // The batch's working memory, kept by each tracing thread from batch to batch.
 struct WavefrontScratch {
-  std::vector<PathState> paths;
+  std::vector<PathState> paths;        // continuePaths' from PathStarts
   std::vector<uint32_t> active, next;  // paths still going, by index
   std::vector<PathSampler> samplers;   // the active paths' samplers ...
   std::vector<VertexNumbers> numbers;  // ... and the numbers their vertices draw
@@ -65,6 +65,10 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
 
 // continuePath for every start, results[i] for starts[i]; results.size() == starts.size().
 void continuePaths(const TraceContext& ctx, std::span<const PathStart> starts,
+                   std::span<PathResult> results, WavefrontScratch& scratch);
+// The same for paths already started (startPath), advanced where they are: PathBatcher
+// builds its paths in place, with no start and no state copied (scratch.paths unused).
+void continuePaths(const TraceContext& ctx, std::span<PathState> paths,
                    std::span<PathResult> results, WavefrontScratch& scratch);
 
 }  // namespace photovr
