@@ -36,12 +36,12 @@ float rangeWindow(float distance, float range) {
   return w * w;
 }
 
-// glTF KHR_lights_punctual, "Inner and Outer Cone Angles": the reference smooth falloff.
-float spotFalloff(const Light& l, const glm::vec3& toPoint) {
-  const float cd = glm::dot(glm::normalize(l.direction), toPoint);
-  const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
-  const float scale = 1.0f / std::max(1e-4f, cosInner - cosOuter);
-  const float t = std::clamp((cd - cosOuter) * scale, 0.0f, 1.0f);
+// glTF KHR_lights_punctual, "Inner and Outer Cone Angles": the reference smooth falloff,
+// t^2 for t = clamp((cos(angle to the axis) - cos(outer)) * coneScale), coneScale =
+// 1 / (cos(inner) - cos(outer)); 'toPoint' unit.
+float spotFalloff(const glm::vec3& axis, float cosOuter, float coneScale,
+                  const glm::vec3& toPoint) {
+  const float t = std::clamp((glm::dot(axis, toPoint) - cosOuter) * coneScale, 0.0f, 1.0f);
   return t * t;
 }
 
@@ -111,7 +111,9 @@ void LightSet::update() {
   const float radius = sceneRadius(scene_);
   for (const Light& l : scene_.lights)
     if (l.intensity > 0.0f && luminance(l.color) > 0.0f) {
-      punctual_.push_back(&l);
+      const float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
+      punctual_.push_back({&l, l.color * l.intensity, glm::normalize(l.direction), cosOuter,
+                           1.0f / std::max(1e-4f, cosInner - cosOuter)});
       weights.push_back(punctualPower(l, radius));
     }
   addAreaTriangles(weights);
@@ -200,12 +202,13 @@ void LightSet::sampleStandIn(StandIn kind, const glm::vec3& point, glm::vec2 u,
   s.pdf = 1.0f;  // nominal: the radiance is 0 whatever the density
 }
 
-void LightSet::samplePunctual(const Light& l, const glm::vec3& point, LightSample& s) const {
+void LightSet::samplePunctual(const Punctual& p, const glm::vec3& point, LightSample& s) const {
+  const Light& l = *p.light;
   s.isDelta = true;
   if (l.type == Light::Type::Directional) {
-    s.direction = -glm::normalize(l.direction);
+    s.direction = -p.axis;
     s.distance = kInfinity;
-    s.radiance = l.color * l.intensity;  // lux: irradiance normal to the light
+    s.radiance = p.radiance;  // lux: irradiance normal to the light
     return;
   }
   const glm::vec3 d = l.position - point;
@@ -214,8 +217,9 @@ void LightSet::samplePunctual(const Light& l, const glm::vec3& point, LightSampl
   s.distance = std::sqrt(dist2);
   s.direction = d / s.distance;
   float scale = rangeWindow(s.distance, l.range) / dist2;  // candela / d^2 = irradiance
-  if (l.type == Light::Type::Spot) scale *= spotFalloff(l, -s.direction);
-  s.radiance = l.color * l.intensity * scale;
+  if (l.type == Light::Type::Spot)
+    scale *= spotFalloff(p.axis, p.cosOuter, p.coneScale, -s.direction);
+  s.radiance = p.radiance * scale;
 }
 
 void LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u,
@@ -250,7 +254,7 @@ void LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u, LightS
   if (pick.index >= firstStandIn) {
     sampleStandIn(standIns_[pick.index - firstStandIn], point, u, s);
   } else if (pick.index < n) {
-    samplePunctual(*punctual_[pick.index], point, s);
+    samplePunctual(punctual_[pick.index], point, s);
     s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;
   } else if (pick.index < n + m) {
     sampleTriangle(triangles_[pick.index - n], point, u, s);

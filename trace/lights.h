@@ -68,12 +68,20 @@ class LightSet {
     glm::vec3 normal;      // world, unit: unitGeometricNormal(e1, e2), as surfaceAt's
     float area;
   };
+  // A punctual light with what its samples share, computed once (with the expressions the
+  // samples used: the same bits).
+  struct Punctual {
+    const Light* light;
+    glm::vec3 radiance;         // colour x intensity
+    glm::vec3 axis;             // unit, where it points
+    float cosOuter, coneScale;  // a spot's cone: the falloff's offset and scale
+  };
   static constexpr uint32_t kNoLight = ~0u;
   // Index into triangles_ of (instance, triangle), or kNoLight: a flat table instead of a
   // hash map, since pdfArea() runs for every BSDF ray that lands on an emitter.
   uint32_t lightIndex(uint32_t instance, uint32_t triangle) const;
   // Each fills a default LightSample 's'.
-  void samplePunctual(const Light& light, const glm::vec3& point, LightSample& s) const;
+  void samplePunctual(const Punctual& light, const glm::vec3& point, LightSample& s) const;
   void sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, glm::vec2 u,
                       LightSample& s) const;
   // A light class the scene lacks, sampled like a real light of that class but dark.
@@ -85,7 +93,7 @@ class LightSet {
 
   const Scene& scene_;
   WorkSkips skips_;
-  std::vector<const Light*> punctual_;
+  std::vector<Punctual> punctual_;
   std::vector<AreaTriangle> triangles_;
   std::vector<uint32_t> instanceSlots_;  // per instance: first entry in triangleSlots_, or kNoLight
   std::vector<uint32_t> triangleSlots_;  // per triangle of emissive instances: light or kNoLight

@@ -142,10 +142,6 @@ Distribution1D::Discrete Distribution1D::sampleDiscrete(float u) const {
   return {i, pmf(i)};
 }
 
-float Distribution1D::pdf(float x) const {
-  return func_[cellIndex(x, size())] / integral_;
-}
-
 // ---------------------------------------------------------------------------------------
 
 Distribution2D::Distribution2D(std::span<const float> f, int nx, int ny) {
@@ -161,6 +157,11 @@ Distribution2D::Distribution2D(std::span<const float> f, int nx, int ny) {
     rowIntegrals[y] = float(sum / nx);
   }
   marginal_ = Distribution1D(rowIntegrals);
+  width_ = nx;
+  cellPdf_.resize(size_t(nx) * size_t(ny));
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      cellPdf_[size_t(y) * nx + x] = marginal_.cellPdf(y) * rows_[y].cellPdf(x);
 }
 
 Distribution2D::Sample Distribution2D::sample(glm::vec2 u) const {
@@ -170,7 +171,7 @@ Distribution2D::Sample Distribution2D::sample(glm::vec2 u) const {
 }
 
 float Distribution2D::pdf(glm::vec2 p) const {
-  return marginal_.pdf(p.y) * rows_[cellIndex(p.y, height())].pdf(p.x);
+  return cellPdf_[size_t(cellIndex(p.y, height())) * width_ + cellIndex(p.x, width_)];
 }
 
 }  // namespace photovr

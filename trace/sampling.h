@@ -132,7 +132,8 @@ class Distribution1D {
 
   Sample sampleContinuous(float u) const;
   Discrete sampleDiscrete(float u) const;
-  float pdf(float x) const;  // density at x in [0,1]
+  float pdf(float x) const { return cellPdf(cellIndex(x, size())); }   // density at x in [0,1]
+  float cellPdf(int index) const { return func_[index] / integral_; }  // ... in cell 'index'
   float pmf(int index) const { return func_[index] / (integral_ * float(size())); }
 
   int size() const { return int(func_.size()); }
@@ -168,12 +169,17 @@ class Distribution2D {
   Sample sample(glm::vec2 u) const;
   float pdf(glm::vec2 p) const;
   bool empty() const { return rows_.empty(); }
-  int width() const { return empty() ? 0 : rows_[0].size(); }
+  int width() const { return width_; }
   int height() const { return int(rows_.size()); }
 
  private:
   std::vector<Distribution1D> rows_;
   Distribution1D marginal_;
+  // pdf() per cell, row by row: the marginal's density times the row's, as they give it
+  // (one load where there were two through rows_, whose tables lie apart in memory: the
+  // environment's MIS density is taken for every ray that leaves the scene).
+  std::vector<float> cellPdf_;
+  int width_ = 0;
 };
 
 }  // namespace photovr
