@@ -144,7 +144,10 @@ void traceBounces(const TraceContext& ctx, std::span<PathState> paths,
   s.next.clear();
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.bounceOwner[j];
-    const HitGeometry& g = s.hitOf[j] == ~0u ? HitGeometry{} : s.geometry[s.hitOf[j]];
+    // By reference: a conditional with HitGeometry{} in it copied the hit's geometry into a
+    // temporary (a third of continuePaths' own time waited on that copy).
+    static const HitGeometry kMiss{};
+    const HitGeometry& g = s.hitOf[j] == ~0u ? kMiss : s.geometry[s.hitOf[j]];
     if (advancePath(ctx, paths[k], results[k], s.found[j], g)) s.next.push_back(k);
   }
   s.active.swap(s.next);
