@@ -48,6 +48,30 @@ TEST(Lights, SpotLightFallsOffBetweenItsCones) {
   EXPECT_FLOAT_EQ(lights.sample({0, 0, 0}, 0.5f, {}).radiance.x, 1.0f);  // on the axis
   const float outside = std::tan(0.45f);
   EXPECT_FALSE(lights.sample({outside, 0, 0}, 0.5f, {}).valid());
+  // Between the cones, 0.3 rad off the axis: glTF's reference falloff t^2, t = (cos 0.3 -
+  // cos 0.4) / (cos 0.2 - cos 0.4), over d^2 = 1 / cos^2 0.3. The cosines' difference
+  // (~0.05) magnifies float rounding (~6e-8) about 20x in t, twice that in t^2: 1e-5
+  // relative holds it with room.
+  const double t = (std::cos(0.3) - std::cos(0.4)) / (std::cos(0.2) - std::cos(0.4));
+  const double expected = t * t * std::cos(0.3) * std::cos(0.3);
+  const LightSample between = lights.sample({std::tan(0.3f), 0, 0}, 0.5f, {});
+  EXPECT_NEAR(between.radiance.x, expected, 1e-5 * expected);
+}
+
+TEST(Lights, DirectionalLightShinesAlongItsDirection) {
+  Scene s;
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = {0, -2, 0};  // not unit: glTF's is, but the light set normalises it
+  sun.intensity = 3.0f;
+  s.lights.push_back(sun);
+  const LightSet lights(s);
+  const LightSample ls = lights.sample({5, 0, -7}, 0.5f, {0.5f, 0.5f});
+  ASSERT_TRUE(ls.valid());
+  EXPECT_TRUE(ls.isDelta);
+  EXPECT_TRUE(ls.atInfinity());
+  EXPECT_EQ(ls.direction, glm::vec3(0, 1, 0));  // towards the light: against its direction
+  EXPECT_FLOAT_EQ(ls.radiance.x, 3.0f);         // lux, whatever the point
 }
 
 TEST(Lights, SelectionIsProportionalToPower) {
