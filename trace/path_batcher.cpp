@@ -13,17 +13,26 @@ void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
                          const FirstBounce* reuse) {
   ++pixels_.back().samples;
   if (reuse) {
-    samples_.push_back({-1, int32_t(reused_.size()), hit.emission});
+    addSample(-1, int32_t(reused_.size()), hit.emission);
     startPath(reused_.emplace_back(), hit, -dir, counters, nullptr, reuse);
     reusedFrom_.push_back({counters, reuse});
     return;
   }
-  samples_.push_back({int32_t(paths_.size()), -1, hit.emission});
+  addSample(int32_t(paths_.size()), -1, hit.emission);
   startPath(paths_.emplace_back(), hit, -dir, counters, record);
 }
 
+// Written in place: a Sample built on the stack and pushed was copied by a 16-byte load of
+// its 8- and 4-byte stores, which waited on store forwarding (most of addHit's time).
+void PathBatcher::addSample(int32_t start, int32_t finished, const glm::vec3& seen) {
+  Sample& s = samples_.emplace_back();
+  s.start = start;
+  s.finished = finished;
+  s.seen = seen;
+}
+
 void PathBatcher::addMiss(const glm::vec3& environment) {
-  samples_.push_back({-1, -1, environment});
+  addSample(-1, -1, environment);
   ++pixels_.back().samples;
 }
 

@@ -40,6 +40,7 @@ class PathBatcher {
 
  private:
   void finishReused(const TraceContext& ctx);
+  void addSample(int32_t start, int32_t finished, const glm::vec3& seen);
 
   struct Sample {
     int32_t start = -1;     // index into paths_ and results_ ...
