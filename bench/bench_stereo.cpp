@@ -114,6 +114,7 @@ void timePt(const TraceContext& base, const View& view, const Args& a, Row& row)
   StereoPaths paths;
   std::array<std::array<std::vector<double>, 2>, 2> ms;
   uint64_t total = 0, reused = 0;
+  std::array<std::array<EyeImage, 2>, 2> buffers;  // per setting and eye, as FramePipeline keeps
   TraceContext ctx = base;
   for (int k = -1; k < a.repeats; ++k)
     for (int on = 0; on < 2; ++on) {
@@ -124,7 +125,8 @@ void timePt(const TraceContext& base, const View& view, const Args& a, Row& row)
       for (int turn = 0; turn < 2; ++turn) {
         const int e = turns.order[turn];
         const auto t0 = Clock::now();
-        const EyeImage img = renderPathTraced(ctx, eyes[e], uint32_t(e), f, {}, turns.roles[e]);
+        EyeImage& img = buffers[on][e];
+        img = renderPathTraced(ctx, eyes[e], uint32_t(e), f, std::move(img), turns.roles[e]);
         if (k < 0) continue;
         ms[on][turn].push_back(msSince(t0));
         if (on && turn == 1) total += img.paths, reused += img.reusedPaths;
