@@ -1,5 +1,7 @@
 #include "trace/environment_sampling.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace photovr {
@@ -11,16 +13,18 @@ glm::ivec2 pixelOf(glm::vec2 uv, int width, int height) {
   return {cellIndex(uv.x - std::floor(uv.x), width), cellIndex(1.0f - uv.y, height)};
 }
 
-// Tabulates an environment on a w x h equirect grid at pixel centres.
-std::vector<glm::vec3> tabulate(const Environment& env, int w, int h) {
-  std::vector<glm::vec3> table(size_t(w) * h);
-  for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) {
-      const glm::vec2 uv((float(i) + 0.5f) / float(w), 1.0f - (float(j) + 0.5f) / float(h));
-      table[size_t(j) * w + i] = lookupEnvironment(env, equirectToDirection(uv));
-    }
+// An environment that depends on the elevation alone (Sky, Constant): the luminance at the
+// centre of each of n equal bands of y = d.y, band k being y in [-1 + 2k/n, -1 + 2(k+1)/n).
+// n is even, so the horizon y = 0 is a band edge; the sky's blend is linear in y above it,
+// so a band's centre holds its mean.
+std::vector<float> zoneWeights(const Environment& env, int n) {
+  std::vector<float> f(size_t(n), 0.0f);
+  for (int k = 0; k < n; ++k) {
+    const float y = -1.0f + 2.0f * (float(k) + 0.5f) / float(n);
+    const float l = luminance(lookupEnvironment(env, {std::sqrt(1.0f - y * y), y, 0.0f}));
+    if (isFinite(l) && l > 0.0f) f[size_t(k)] = l;
   }
-  return table;
+  return f;
 }
 
 // Luminance * sin(theta at the row centre) per pixel, row 0 at the top (theta = 0).
@@ -85,17 +89,27 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(&env) {
         Distribution2D(samplingWeights(env.pixels, env.width, env.height), env.width, env.height);
     return;
   }
-  const std::vector<glm::vec3> table = tabulate(env, kTableWidth, kTableHeight);
-  distribution_ =
-      Distribution2D(samplingWeights(table, kTableWidth, kTableHeight), kTableWidth, kTableHeight);
+  zones_ = Distribution1D(zoneWeights(env, kZones));
+}
+
+bool EnvironmentSampler::empty() const {
+  return env_ == nullptr || (distribution_.empty() && zones_.size() == 0);
 }
 
 EnvironmentSample EnvironmentSampler::sample(glm::vec2 u) const {
   EnvironmentSample s;
   if (empty()) return s;
-  const Distribution2D::Sample d = distribution_.sample(u);
-  // Distribution coordinates are (u, 1 - v): row 0 of the table is the top (v = 1).
-  s.direction = equirectToDirection({d.p.x, 1.0f - d.p.y});
+  if (zones_.size() > 0) {
+    // A band by the 1D density, y uniform within it, the azimuth uniform: dw = dy dphi.
+    const float y = std::clamp(2.0f * zones_.sampleContinuous(u.y).x - 1.0f, -1.0f, 1.0f);
+    const float r = std::sqrt((1.0f - y) * (1.0f + y));
+    const float phi = 2.0f * kPi * u.x;
+    s.direction = {r * std::cos(phi), y, r * std::sin(phi)};
+  } else {
+    const Distribution2D::Sample d = distribution_.sample(u);
+    // Distribution coordinates are (u, 1 - v): row 0 of the table is the top (v = 1).
+    s.direction = equirectToDirection({d.p.x, 1.0f - d.p.y});
+  }
   // pdf() and lookup from the direction, not from the cell drawn, so that a direction
   // sampled here and the same direction found by a BSDF ray get the same pdf and radiance
   // (MIS needs the two to agree), even where rounding moves it across a pixel edge.
@@ -106,6 +120,13 @@ EnvironmentSample EnvironmentSampler::sample(glm::vec2 u) const {
 
 float EnvironmentSampler::pdf(const glm::vec3& direction) const {
   if (empty()) return 0.0f;
+  if (zones_.size() > 0) {
+    // Density p(x) over x = (1 + y) / 2 in [0, 1]: dw = dy dphi = 2 dx dphi, so the solid
+    // angle density is p(x) / (4 pi).
+    const float len = glm::length(direction);
+    const float y = len > 0.0f ? std::clamp(direction.y / len, -1.0f, 1.0f) : 0.0f;
+    return zones_.pdf(0.5f * (1.0f + y)) * (0.25f * kInvPi);
+  }
   const glm::vec2 uv = directionToEquirect(direction);
   // dw = sin(theta) dtheta dphi = 2 pi^2 sin(theta) du dv (pbrt sec. 12.5.3, eq. 12.12).
   const float theta = kPi * (1.0f - uv.y);

@@ -43,29 +43,33 @@ struct EnvironmentSample {
   bool valid() const { return pdf > 0.0f; }
 };
 
-// A piecewise-constant 2D density over the equirect (u, 1 - v) square in proportion to
-// pixel luminance * sin(theta at the row centre), the Jacobian of the mapping, so that
-// directions are drawn in proportion to the radiance they carry per solid angle (pbrt
-// sec. 12.5.3). Maps use their own pixels; Constant and Sky are tabulated on a
-// kTableWidth x kTableHeight grid at pixel centres, so one mechanism serves all types
-// (a Sky's radiance is then only nearly proportional to the density; still unbiased).
+// Importance sampling in proportion to the radiance per solid angle, by one of two
+// piecewise-constant densities:
+//  - Map: a 2D density over the equirect (u, 1 - v) square in proportion to pixel
+//    luminance * sin(theta at the row centre), the Jacobian of the mapping (pbrt sec.
+//    12.5.3), so that L / pdf is constant over each pixel's rows of equal sin(theta).
+//  - Sky and Constant, which depend on the elevation alone: a 1D density over y = d.y in
+//    kZones bands of equal solid angle (Archimedes: dw = dy dphi), the azimuth uniform.
+//    pdf() is a band lookup with no trigonometry and sample() takes one sincos; the 2D
+//    table they were tabulated on before spent an atan2, an asin and a sin in every pdf()
+//    and two table searches per sample, ~14 % of atrium's tracer (docs/MEASUREMENTS.md).
 class EnvironmentSampler {
  public:
-  // 64 x 32 cells of 5.6 degrees resolve the gradient sky's only feature, the horizon,
-  // to within half a cell; the sky has no sun disc to resolve.
-  static constexpr int kTableWidth = 64;
-  static constexpr int kTableHeight = 32;
+  // 64 bands, 32 above the horizon (the band edge y = 0), of 1/32 in sin(elevation): the
+  // gradient sky's only feature is its horizon, which is an edge; it has no sun disc.
+  static constexpr int kZones = 64;
 
   EnvironmentSampler() = default;
   explicit EnvironmentSampler(const Environment& env);  // keeps a pointer to env
 
-  bool empty() const { return env_ == nullptr || distribution_.empty(); }
+  bool empty() const;
   EnvironmentSample sample(glm::vec2 u) const;
   float pdf(const glm::vec3& direction) const;  // solid angle density of sample()
 
  private:
   const Environment* env_ = nullptr;
-  Distribution2D distribution_;
+  Distribution2D distribution_;  // Map
+  Distribution1D zones_;         // Sky, Constant: over x = (1 + y) / 2
 };
 
 }  // namespace photovr

@@ -146,6 +146,11 @@ glm::vec2 gridCoords(const glm::vec3& d) {
 double gridJacobian(double x) {
   return 2.0 * M_PI * M_PI * std::sin(M_PI * x);
 }
+// Directions on the ((1 + d.y) / 2, phi / 2 pi) square, of constant Jacobian 4 pi.
+glm::vec3 zonalDirection(double x, double y) {
+  const double dy = 2.0 * x - 1.0, r = std::sqrt(1.0 - dy * dy), phi = 2.0 * M_PI * y;
+  return glm::vec3(float(r * std::cos(phi)), float(dy), float(r * std::sin(phi)));
+}
 
 class EnvironmentSamplerTest : public testing::TestWithParam<int> {
  protected:
@@ -159,16 +164,20 @@ class EnvironmentSamplerTest : public testing::TestWithParam<int> {
 };
 
 TEST_P(EnvironmentSamplerTest, PdfIntegratesToOne) {
-  // Midpoint rule on 128 x 256 cells, a refinement of both the 32 x 16 map and the 64 x 32
-  // table: each cell lies inside one pixel, where pdf * Jacobian is the table's constant
-  // density, so the rule is exact but for float rounding of the direction, worst at the
-  // poles (sin theta from a float cos ~ 1 - theta^2/2): measured < 1e-6, bound 1e-4.
+  // Midpoint rule on 128 x 256 cells that refine the sampler's own: the map's 32 x 16 pixels
+  // on the (theta, phi) square, dw = 2 pi^2 sin(theta) dx dy; the sky's and the constant's
+  // 64 bands of y = d.y, on the (y, phi) square, dw = dy dphi (4 pi over the square). Each
+  // cell lies inside one of the sampler's, where pdf * Jacobian is constant, so the rule is
+  // exact but for float rounding of the direction, worst at the poles (sin theta from a
+  // float cos ~ 1 - theta^2/2): measured < 1e-6, bound 1e-4.
   const int nx = 128, ny = 256;
+  const bool zonal = env_.type != Environment::Type::Map;
   double sum = 0.0;
   for (int i = 0; i < nx; ++i)
     for (int j = 0; j < ny; ++j) {
       const double x = (i + 0.5) / nx, y = (j + 0.5) / ny;
-      sum += sampler_.pdf(gridDirection(x, y)) * gridJacobian(x);
+      sum += zonal ? sampler_.pdf(zonalDirection(x, y)) * 4.0 * M_PI
+                   : sampler_.pdf(gridDirection(x, y)) * gridJacobian(x);
     }
   EXPECT_NEAR(sum / (double(nx) * ny), 1.0, 1e-4);
 }
@@ -229,6 +238,33 @@ TEST(EnvironmentSampler, PdfIsLuminanceTimesSinThetaOverTheJacobian) {
   for (int i = 0; i < 1000; ++i)
     if (luminance(sampler.sample(s.next2()).radiance) > 100.0f) ++inSpot;
   EXPECT_GT(inSpot, 700);
+}
+
+TEST(EnvironmentSampler, SkyPdfIsItsBandsLuminanceOverTheMeanAtAnyAzimuth) {
+  // Independent of Distribution1D: band k of y = d.y in [-1 + 2k/64, -1 + 2(k+1)/64) has
+  // density lum(sky at its centre) / mean over the bands / (4 pi), whatever the azimuth
+  // (dw = dy dphi). Float sums of 64 weights vs double: 1e-5 relative.
+  const Environment env = clearSky();
+  const EnvironmentSampler sampler(env);
+  const int n = EnvironmentSampler::kZones;
+  auto bandLuminance = [&](int k) {
+    const double y = -1.0 + 2.0 * (k + 0.5) / n;
+    return double(luminance(skyRadiance(env, glm::vec3(float(std::sqrt(1.0 - y * y)), y, 0))));
+  };
+  double mean = 0.0;
+  for (int k = 0; k < n; ++k) mean += bandLuminance(k) / n;
+  for (int k : {0, 20, n / 2 - 1, n / 2, 50, n - 1})
+    for (double phi : {0.1, 2.0, 4.5}) {
+      const double y = -1.0 + 2.0 * (k + 0.3) / n, r = std::sqrt(1.0 - y * y);
+      const glm::vec3 d(float(r * std::cos(phi)), float(y), float(r * std::sin(phi)));
+      const double expected = bandLuminance(k) / mean / (4.0 * M_PI);
+      EXPECT_NEAR(sampler.pdf(d), expected, 1e-5 * expected) << k << " " << phi;
+    }
+  // The horizon is a band edge: just below it the ground's density, just above the sky's.
+  const float below = sampler.pdf({1.0f, -1e-6f, 0.0f}), above = sampler.pdf({1.0f, 1e-6f, 0.0f});
+  EXPECT_NEAR(below, bandLuminance(n / 2 - 1) / mean / (4.0 * M_PI), 1e-5 * below);
+  EXPECT_NEAR(above, bandLuminance(n / 2) / mean / (4.0 * M_PI), 1e-5 * above);
+  EXPECT_GT(above, 2.0f * below);  // the built-in test sky's horizon outshines its ground
 }
 
 TEST(EnvironmentSampler, NoneAndBadMapsGiveNoSamples) {
