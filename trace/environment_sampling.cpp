@@ -92,10 +92,6 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env) : env_(&env) {
   zones_ = Distribution1D(zoneWeights(env, kZones));
 }
 
-bool EnvironmentSampler::empty() const {
-  return env_ == nullptr || (distribution_.empty() && zones_.size() == 0);
-}
-
 EnvironmentSample EnvironmentSampler::sample(glm::vec2 u) const {
   EnvironmentSample s;
   if (empty()) return s;

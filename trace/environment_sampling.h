@@ -62,7 +62,7 @@ class EnvironmentSampler {
   EnvironmentSampler() = default;
   explicit EnvironmentSampler(const Environment& env);  // keeps a pointer to env
 
-  bool empty() const;
+  bool empty() const { return env_ == nullptr || (distribution_.empty() && zones_.size() == 0); }
   EnvironmentSample sample(glm::vec2 u) const;
   float pdf(const glm::vec3& direction) const;  // solid angle density of sample()
 
