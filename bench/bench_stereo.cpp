@@ -179,7 +179,8 @@ std::vector<std::pair<size_t, size_t>> correspondingPixels(const TraceContext& c
     for (int y = 0; y < c.height; ++y)
       for (int x = 0; x < c.width; ++x) {
         const glm::vec3 dir = c.rayDirection(x + 0.5f, y + 0.5f);
-        const TraceHit th = ctx.embree.intersect(c.pose.position, dir, 0.0f, kInfinity);
+        const TraceHit th =
+            ctx.embree.intersect(c.pose.position, dir, 0.0f, kInfinity, RayRole::Camera);
         if (!th.hit) continue;
         const size_t i = size_t(y) * c.width + x;
         hits[e][i] = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);

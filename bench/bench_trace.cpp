@@ -89,16 +89,19 @@ uint64_t hashColors(const std::vector<glm::vec3>& c) {
   return h;
 }
 
-std::vector<RecordedRay> ofKind(const std::vector<RecordedRay>& rays, RecordedRay::Kind kind) {
+// The intersect rays (the camera's among them) or the occluded ones.
+std::vector<RecordedRay> ofKind(const std::vector<RecordedRay>& rays, bool occluded) {
   std::vector<RecordedRay> out;
-  std::copy_if(rays.begin(), rays.end(), std::back_inserter(out),
-               [&](const RecordedRay& r) { return r.kind == kind; });
+  std::copy_if(rays.begin(), rays.end(), std::back_inserter(out), [&](const RecordedRay& r) {
+    return (r.kind == RecordedRay::Kind::Occluded) == occluded;
+  });
   return out;
 }
 
 // The scene with every material double-sided and opaque: Embree then has no filter function
-// to call, so replaying the same rays on it prices the any-hit filters (back-face culling,
-// alpha mask). Its hits differ from the real scene's, so this is an estimate.
+// to call, so replaying the same rays on it prices the filters (the alpha mask's, and the
+// camera rays' back-face culling). Its hits differ from the real scene's, so this is an
+// estimate.
 Scene withoutFilters(Scene scene) {
   for (Material& m : scene.materials) {
     m.doubleSided = true;
@@ -117,8 +120,8 @@ struct Replays {
 
   Replays(const Scene& scene, const EmbreeScene& e, std::vector<RecordedRay> rays)
       : all(std::move(rays)),
-        intersect(ofKind(all, RecordedRay::Kind::Intersect)),
-        occluded(ofKind(all, RecordedRay::Kind::Occluded)),
+        intersect(ofKind(all, false)),
+        occluded(ofKind(all, true)),
         embree(e),
         plainScene(withoutFilters(scene)),
         floor(scene) {

@@ -42,6 +42,7 @@ void addMaterialFlags(SceneFeatures& f, const Material& m, size_t triangles) {
   f.alphaMask |= m.alphaMode == AlphaMode::Mask;
   f.alphaBlend |= m.alphaMode == AlphaMode::Blend;
   f.doubleSided |= m.doubleSided;
+  f.singleSided |= m.cullsBackFaces();
 }
 
 void countLights(SceneFeatures& f, const Scene& scene) {
@@ -271,7 +272,11 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
   if (f.alphaBlend) out << "  alpha blend: stochastic coverage (any-hit filter, G-buffer hash)\n";
   out << "  double-sided: " << (f.doubleSided ? "yes" : "no") << "\n";
   out << "  any-hit filter: " << count(f.filteredMeshes) << " of " << count(scene.meshes.size())
-      << " meshes (MASK, BLEND or single-sided; the rest have none)\n";
+      << " meshes (MASK or BLEND; the rest have none)\n";
+  out << "  single-sided back faces: "
+      << (f.singleSided ? "culled for camera rays (as rasterized), met by bounce and shadow rays"
+                        : std::string("none (every material is double-sided)"))
+      << "\n";
   out << (isAnimated(scene) ? "  BVH refit: once per frame while the animation plays (the top "
                               "level; skinned meshes' BVHs too); never for a still at --time\n"
                             : "  BVH refit: never (static scene)\n");
@@ -308,7 +313,7 @@ SceneFeatures analyzeScene(const Scene& scene) {
   f.areaLights = f.emissiveTriangles > 0;
   for (const Mesh& mesh : scene.meshes)  // as trace/embree_scene.cpp installs the filter
     if (const Material* m = materialOf(scene, mesh))
-      f.filteredMeshes += m->alphaMode != AlphaMode::Opaque || m->cullsBackFaces();
+      f.filteredMeshes += m->alphaMode != AlphaMode::Opaque;
   f.environment = environmentEmits(scene.environment);
   size_t unused = 0;
   for (const bool u : used) unused += u ? 0 : 1;

@@ -19,9 +19,10 @@ struct SceneFeatures {
   bool alphaMask = false;       // a MASK material is instanced: any-hit alpha test
   bool alphaBlend = false;      // a BLEND material is instanced
   bool doubleSided = false;     // a double-sided material is instanced
+  bool singleSided = false;     // ... a single-sided one: camera rays cull its back faces
   size_t pointLights = 0, spotLights = 0, directionalLights = 0;
   size_t emissiveTriangles = 0;       // instanced (world) triangles with emission: area lights
-  size_t filteredMeshes = 0;          // meshes that need the any-hit filter (MASK, single-sided)
+  size_t filteredMeshes = 0;          // meshes that need the any-hit filter (MASK, BLEND)
   std::vector<std::string> warnings;  // problems a person should hear about before rendering
 };
 

@@ -54,7 +54,9 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           if (!g.record(i).hit()) {               // background: the environment, untraced
             if (!ctx.settings.skips.skyPixels) {  // ... unless that skip is off
               ++tile.rays;
-              if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity).hit) ++tileSkyHits;
+              if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity, RayRole::Camera)
+                      .hit)
+                ++tileSkyHits;
             }
             img.color[i] = ctx.lights.environmentRadiance(dir);
             continue;

@@ -67,33 +67,39 @@ float coverageNumber(const RTCFilterFunctionNArguments* args, unsigned i, uint32
   return toUnitFloat(h);
 }
 
-// Any-hit filter: the tracer sees what the G-buffer sees — MASK texels below the cutoff
-// are holes (the shader's discard) and single-sided back faces are culled. A back face is
-// one the ray meets from behind the counter-clockwise winding, in object space: Embree
-// hands instanced geometry's filters the ray and the hit's unnormalised geometric normal
-// (counter-clockwise front, Embree's RTC_GEOMETRY_TYPE_TRIANGLE convention) in the
-// instance's space, where a mirroring instance transform cannot flip the answer. Using
-// Embree's Ng instead of recomputing the normal from the mesh saves six indexed loads and a
-// cross product per candidate hit (the filter was 4 % of a render; bench/).
-void visibilityFilter(const RTCFilterFunctionNArguments* args) {
+// Any-hit filter of MASK and BLEND meshes: the tracer sees what the G-buffer sees — MASK
+// texels below the cutoff are holes (the shader's discard), a BLEND surface is met with
+// probability alpha.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
   const auto* d = static_cast<const FilterData*>(args->geometryUserPtr);
-  for (unsigned i = 0; i < args->N; ++i) {
+  const unsigned n = args->N;
+  for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] == 0) continue;
-    const unsigned n = args->N;
-    if (d->cullBackFaces) {
-      const float facing = RTCRayN_dir_x(args->ray, n, i) * RTCHitN_Ng_x(args->hit, n, i) +
-                           RTCRayN_dir_y(args->ray, n, i) * RTCHitN_Ng_y(args->hit, n, i) +
-                           RTCRayN_dir_z(args->ray, n, i) * RTCHitN_Ng_z(args->hit, n, i);
-      if (facing > 0.0f) {
-        args->valid[i] = 0;
-        continue;
-      }
-    }
     const uint32_t prim = RTCHitN_primID(args->hit, n, i);
     const float u = RTCHitN_u(args->hit, n, i), v = RTCHitN_v(args->hit, n, i);
     if (d->alphaMask && maskAlpha(*d, prim, u, v) < d->material->alphaCutoff) args->valid[i] = 0;
     if (d->alphaBlend && coverageNumber(args, i, prim) >= maskAlpha(*d, prim, u, v))
       args->valid[i] = 0;
+  }
+}
+
+// Camera rays' filter (in their intersect context; Embree runs it after a mesh's own):
+// single-sided back faces are culled, as the rasterizer culls them. A back face is one the
+// ray meets from behind the counter-clockwise winding, in object space: Embree hands
+// instanced geometry's filters the ray and the hit's unnormalised geometric normal
+// (counter-clockwise front, Embree's RTC_GEOMETRY_TYPE_TRIANGLE convention) in the
+// instance's space, where a mirroring instance transform cannot flip the answer. Using
+// Embree's Ng instead of recomputing the normal from the mesh saves six indexed loads and a
+// cross product per candidate hit.
+void cameraCullFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* d = static_cast<const FilterData*>(args->geometryUserPtr);
+  if (!d->cullBackFaces) return;
+  const unsigned n = args->N;
+  for (unsigned i = 0; i < n; ++i) {
+    const float facing = RTCRayN_dir_x(args->ray, n, i) * RTCHitN_Ng_x(args->hit, n, i) +
+                         RTCRayN_dir_y(args->ray, n, i) * RTCHitN_Ng_y(args->hit, n, i) +
+                         RTCRayN_dir_z(args->ray, n, i) * RTCHitN_Ng_z(args->hit, n, i);
+    if (facing > 0.0f) args->valid[i] = 0;
   }
 }
 
@@ -106,6 +112,7 @@ struct EmbreeScene::Impl {
   std::vector<RTCScene> meshScenes;
   std::vector<RTCGeometry> instanceGeometries;
   std::vector<FilterData> filterData;
+  bool cameraCulling = false;  // some mesh is single-sided: camera rays carry cameraCullFilter
 
   explicit Impl(const Scene& s) : scene(s) {}
   ~Impl() {
@@ -146,14 +153,18 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
        mat.alphaMode == AlphaMode::Mask,
        mat.alphaMode == AlphaMode::Blend,
        mat.cullsBackFaces()};
-  if (d.alphaMask || d.alphaBlend || d.cullBackFaces || filterAlways) {
+  rtcSetGeometryUserData(g, &d);  // what either filter reads
+  if (d.alphaMask || d.alphaBlend || filterAlways) {
     ++stats.filteredMeshes;
-    rtcSetGeometryUserData(g, &d);
-    rtcSetGeometryIntersectFilterFunction(g, visibilityFilter);
-    rtcSetGeometryOccludedFilterFunction(g, visibilityFilter);
+    rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+    rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
     stats.alphaFilter |= d.alphaMask || d.alphaBlend;
-    stats.backFaceFilter |= d.cullBackFaces;
   }
+  // Embree runs a context's filter on a scene's hits only where the scene (each instanced one
+  // too) enables it.
+  if (cameraCulling)
+    rtcSetSceneFlags(s,
+                     RTCSceneFlags(rtcGetSceneFlags(s) | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION));
   rtcCommitGeometry(g);
   rtcAttachGeometryByID(s, g, 0);
   rtcReleaseGeometry(g);
@@ -164,7 +175,9 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
 void EmbreeScene::Impl::buildInstances() {
   // The top level changes when instances move: LOW quality + DYNAMIC makes re-commits cheap.
   top = rtcNewScene(device);
-  rtcSetSceneFlags(top, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneFlags(top,
+                   RTCSceneFlags(RTC_SCENE_FLAG_DYNAMIC |
+                                 (cameraCulling ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
   rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);
   for (size_t k = 0; k < scene.instances.size(); ++k) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -186,6 +199,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(impl_->device, embreeError, nullptr);
   impl_->filterData.resize(scene.meshes.size());
+  for (const Mesh& mesh : scene.meshes)
+    impl_->cameraCulling |= scene.materials[size_t(mesh.material)].cullsBackFaces();
+  stats_.cameraBackFaceCulling = impl_->cameraCulling;
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     impl_->meshScenes.push_back(impl_->buildMesh(m, !skips.anyHitFilter, stats_));
   impl_->buildInstances();
@@ -245,19 +261,27 @@ RTCRayHit* embreeRays(BatchRayHit* rays) {
   return reinterpret_cast<RTCRayHit*>(rays);
 }
 
-void initContext(RTCIntersectContext& ctx, bool coherent) {
+RecordedRay::Kind intersectKind(RayRole role) {
+  return role == RayRole::Camera ? RecordedRay::Kind::Camera : RecordedRay::Kind::Intersect;
+}
+
+// A query's context: camera rays cull single-sided back faces ('culling': the scene has
+// some) and, in a batch ('batch'), are hinted coherent.
+void initContext(RTCIntersectContext& ctx, RayRole role, bool culling, bool batch) {
   rtcInitIntersectContext(&ctx);
-  ctx.flags =
-      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (role == RayRole::Camera && culling) ctx.filter = cameraCullFilter;
+  if (!batch) return;
+  ctx.flags = role == RayRole::Camera ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                      : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
 }
 
 }  // namespace
 
-TraceHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnear,
-                                float tfar) const {
-  if (recorder_) recorder_->record({o, tnear, d, tfar, RecordedRay::Kind::Intersect});
+TraceHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar,
+                                RayRole role) const {
+  if (recorder_) recorder_->record({o, tnear, d, tfar, intersectKind(role)});
   RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  initContext(ctx, role, impl_->cameraCulling, false);
   RTCRayHit rh = makeRayHit(o, d, tnear, tfar);
   rtcIntersect1(impl_->top, &ctx, &rh);
   return traceHitOf(rh);
@@ -273,11 +297,11 @@ bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, 
 }
 
 void EmbreeScene::intersectBatch(BatchRayHit* rays, size_t count, BatchCall call,
-                                 bool coherent) const {
+                                 RayRole role) const {
   for (size_t i = 0; recorder_ && i < count; ++i)
-    record(*recorder_, rays[i].ray, RecordedRay::Kind::Intersect);
+    record(*recorder_, rays[i].ray, intersectKind(role));
   RTCIntersectContext ctx;
-  initContext(ctx, coherent);
+  initContext(ctx, role, impl_->cameraCulling, true);
   if (call == BatchCall::Single) {
     for (size_t i = 0; i < count; ++i) rtcIntersect1(impl_->top, &ctx, embreeRays(rays + i));
     return;
@@ -285,11 +309,11 @@ void EmbreeScene::intersectBatch(BatchRayHit* rays, size_t count, BatchCall call
   rtcIntersect1M(impl_->top, &ctx, embreeRays(rays), unsigned(count), sizeof(BatchRayHit));
 }
 
-void EmbreeScene::occludedBatch(BatchRay* rays, size_t count, BatchCall call, bool coherent) const {
+void EmbreeScene::occludedBatch(BatchRay* rays, size_t count, BatchCall call) const {
   for (size_t i = 0; recorder_ && i < count; ++i)
     record(*recorder_, rays[i], RecordedRay::Kind::Occluded);
   RTCIntersectContext ctx;
-  initContext(ctx, coherent);
+  initContext(ctx, RayRole::Transport, false, true);
   if (call == BatchCall::Single) {
     for (size_t i = 0; i < count; ++i) rtcOccluded1(impl_->top, &ctx, embreeRays(rays + i));
     return;
@@ -321,21 +345,22 @@ ReplayHit replayHitOf(const RTCRayHit& rh) {
 
 ReplayCounts EmbreeScene::replay(const RecordedRay* rays, size_t count, ReplayHitShader shader,
                                  const void* user, uint64_t firstIndex) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+  RTCIntersectContext transport, camera;
+  initContext(transport, RayRole::Transport, false, false);
+  initContext(camera, RayRole::Camera, impl_->cameraCulling, false);
   ReplayCounts c;
   for (size_t i = 0; i < count; ++i) {
     const RecordedRay& r = rays[i];
     RTCRayHit rh = makeRayHit(r.origin, r.dir, r.tnear, r.tfar);
-    if (r.kind == RecordedRay::Kind::Intersect) {
-      rtcIntersect1(impl_->top, &ctx, &rh);
+    if (r.kind != RecordedRay::Kind::Occluded) {
+      rtcIntersect1(impl_->top, r.kind == RecordedRay::Kind::Camera ? &camera : &transport, &rh);
       ++c.intersectRays;
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       ++c.hits;
       if (!shader) continue;
       c.shaded += shader(user, r, replayHitOf(rh), firstIndex + i);
     } else {
-      rtcOccluded1(impl_->top, &ctx, &rh.ray);
+      rtcOccluded1(impl_->top, &transport, &rh.ray);
       ++c.occludedRays;
       c.blocked += rh.ray.tfar == -std::numeric_limits<float>::infinity();
     }

@@ -24,12 +24,21 @@ struct TraceHit {
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2 (Embree's u, v)
 };
 
+// Whose ray it is. Camera rays see single-sided surfaces from the front only, as the
+// G-buffer's rasterizer does (glTF 3.9.5 culls their back faces), so that both modes agree
+// on what an eye sees. Transport rays (bounce and shadow rays) meet every surface from both
+// sides: a single-sided wall blocks light from behind as from in front, as in Cycles, and
+// light does not leak through the back of a one-sided mesh (docs/ARCHITECTURE.md).
+enum class RayRole : uint8_t { Transport, Camera };
+
 struct EmbreeStats {
   size_t meshBvhs = 0;
   size_t instances = 0;
-  bool alphaFilter = false;     // any-hit alpha test installed (scene has MASK materials)
-  bool backFaceFilter = false;  // any-hit back-face culling (single-sided materials)
-  size_t filteredMeshes = 0;    // meshes with the any-hit filter installed
+  bool alphaFilter = false;  // any-hit alpha test installed (scene has MASK or BLEND materials)
+  // Camera rays cull single-sided back faces (the scene has single-sided meshes): a filter
+  // in their intersect context, which transport rays go without.
+  bool cameraBackFaceCulling = false;
+  size_t filteredMeshes = 0;  // meshes with the any-hit (alpha) filter installed
   std::string buildQuality;
   double buildMilliseconds = 0.0;
 };
@@ -37,7 +46,7 @@ struct EmbreeStats {
 // One ray as the tracer handed it to Embree, for replaying the same ray mix through raw
 // rtcIntersect1 / rtcOccluded1 (bench/).
 struct RecordedRay {
-  enum class Kind : uint8_t { Intersect, Occluded };
+  enum class Kind : uint8_t { Intersect, Occluded, Camera };  // Camera: an intersect ray of it
   glm::vec3 origin{0.0f};
   float tnear = 0.0f;
   glm::vec3 dir{0.0f};
@@ -135,24 +144,26 @@ using ReplayHitShader = float (*)(const void* user, const RecordedRay& ray, cons
 class EmbreeScene {
  public:
   // Keeps a reference to 'scene': it must outlive this object. The any-hit filter goes only
-  // on meshes that need it (MASK or single-sided), unless skips.anyHitFilter is off.
+  // on meshes that need it (MASK or BLEND), unless skips.anyHitFilter is off.
   explicit EmbreeScene(const Scene& scene, const WorkSkips& skips = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Closest hit in (tnear, tfar).
-  TraceHit intersect(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
-  // Any hit in (tnear, tfar).
+  // Closest hit in (tnear, tfar), for a ray of 'role'.
+  TraceHit intersect(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar,
+                     RayRole role = RayRole::Transport) const;
+  // Any hit in (tnear, tfar): a shadow ray, a transport ray.
   bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
 
   // intersect() / occluded() of every ray of a batch, through 'call', in place: each ray's
   // hit fields (ray.tfar and the ids; geomID stays ~0u where nothing was hit), or its tfar
-  // set to -infinity where it is blocked. 'coherent': the rays start near one another and
-  // point alike (primary rays of a tile), Embree's hint to trace them as packets. Recorded
+  // set to -infinity where it is blocked. Camera rays (primary rays of a tile) also go with
+  // Embree's hint that they are coherent (they start together and point alike). Recorded
   // like single calls. Thread-safe.
-  void intersectBatch(BatchRayHit* rays, size_t count, BatchCall call, bool coherent = false) const;
-  void occludedBatch(BatchRay* rays, size_t count, BatchCall call, bool coherent = false) const;
+  void intersectBatch(BatchRayHit* rays, size_t count, BatchCall call,
+                      RayRole role = RayRole::Transport) const;
+  void occludedBatch(BatchRay* rays, size_t count, BatchCall call) const;
 
   // Instance transforms changed (not the meshes): re-commits only the top level, whose
   // LOW-quality dynamic BVH Embree refits/rebuilds in ~0.05 ms per 100 instances

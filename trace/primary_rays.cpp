@@ -22,7 +22,8 @@ PrimaryRayStats timePrimaryRays(const Scene& scene, const EmbreeScene& embree,
                         for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                           const glm::vec3 dir = camRays.pixelRay(x, y);
                           const TraceHit h = embree.intersect(
-                              cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity());
+                              cam.pose.position, dir, 0.0f, std::numeric_limits<float>::infinity(),
+                              RayRole::Camera);
                           if (!h.hit) continue;
                           ++local;
                           // An out-of-line call (no LTO): the compiler cannot drop it.

@@ -53,7 +53,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         primary.emplace_back().ray.set(cam.pose.position, camRays.direction(p.x, p.y), 0.0f,
                                        kInfinity);
       }
-  ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall, true);
+  ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall,
+                            RayRole::Camera);
   counts.traced.rays += primary.size();
   // The hits' geometry in one vectorised pass, as the wavefront tracer's bounce hits.
   thread_local std::vector<HitRef> hits;

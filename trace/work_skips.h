@@ -22,8 +22,9 @@ struct WorkSkips {
   // No environment: it is not sampled (misses are black). Off: a black environment is
   // sampled uniformly over the sphere like any other light, shadow ray included.
   bool environment = true;
-  // Meshes without MASK material (and double-sided) get no any-hit filter. Off: the filter
-  // is installed on every mesh and runs for every candidate hit.
+  // Meshes without a MASK or BLEND material get no any-hit filter (a single-sided mesh's
+  // back faces are culled for camera rays by a filter in their context alone). Off: the
+  // alpha filter is installed on every mesh and runs for every candidate hit.
   bool anyHitFilter = true;
   // A static scene's BVH is never refit. Off: the top level is re-committed every frame,
   // as a renderer that cannot tell a static scene from a moving one must.

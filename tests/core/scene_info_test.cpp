@@ -174,6 +174,11 @@ TEST(SceneInfo, AtriumNeedsLightsSkyAndAlphaMask) {
   const std::string text = describeScene(s);
   EXPECT_TRUE(contains(text, "punctual lights: 4 (shadow rays)")) << text;
   EXPECT_TRUE(contains(text, "alpha mask: yes (any-hit filter)")) << text;
+  // Only the lattice screens (MASK) need the any-hit filter; the single-sided rest are
+  // culled for camera rays alone (trace/embree_scene.h, RayRole).
+  EXPECT_EQ(f.filteredMeshes, 1u);
+  EXPECT_TRUE(f.singleSided);
+  EXPECT_TRUE(contains(text, "single-sided back faces: culled for camera rays")) << text;
   EXPECT_TRUE(contains(text, "generated-marble-checker 256x256")) << text;
   // Counts are printed with thousands separators; rebuild the instanced one to compare.
   std::string n = std::to_string(s.instancedTriangleCount());

@@ -43,7 +43,8 @@ gl::GBufferImage gbufferOf(const Scene& scene, const EyeCamera& cam) {
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
       const size_t i = g.index(x, y);
-      const TraceHit h = embree.intersect(cam.pose.position, cam.pixelRay(x, y), 0.0f, 1e30f);
+      const TraceHit h =
+          embree.intersect(cam.pose.position, cam.pixelRay(x, y), 0.0f, 1e30f, RayRole::Camera);
       glm::uvec4 v(kNoHitInstance, 0, 0, 0);
       if (h.hit)
         v = {h.instance, h.triangle, glm::floatBitsToUint(h.b1), glm::floatBitsToUint(h.b2)};

@@ -58,7 +58,8 @@ Agreement compare(const Scene& scene, const gl::GBufferImage& g, const EyeCamera
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const glm::uvec4 v = g.visibility[g.index(x, y)];
-      const TraceHit h = embree.intersect(cam.pose.position, cam.pixelRay(x, y), 0.0f, 1e30f);
+      const TraceHit h =
+          embree.intersect(cam.pose.position, cam.pixelRay(x, y), 0.0f, 1e30f, RayRole::Camera);
       ++a.pixels;
       a.hits += h.hit;
       const bool same = h.hit ? (v.x == h.instance && v.y == h.triangle) : v.x == kNoHit;

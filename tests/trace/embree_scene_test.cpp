@@ -34,14 +34,35 @@ TEST(EmbreeScene, HitDistanceAndBarycentricsOfAKnownSquare) {
   EXPECT_FALSE(e.intersect({0.5f, -0.5f, 0}, {0, 0, -1}, 0, 2.9f).hit);  // tfar respected
 }
 
-TEST(EmbreeScene, SingleSidedBackFacesAreInvisibleLikeInTheGBuffer) {
+TEST(EmbreeScene, CameraRaysCullSingleSidedBackFacesLikeTheGBuffer) {
   const Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
   const EmbreeScene e(s);
-  EXPECT_TRUE(e.stats().backFaceFilter);
-  EXPECT_FALSE(e.intersect({0, 0, -6}, {0, 0, 1}, 0, kInf).hit);  // from behind
-  EXPECT_FALSE(e.occluded({0, 0, -6}, {0, 0, 1}, 0, kInf));
+  EXPECT_TRUE(e.stats().cameraBackFaceCulling);
+  EXPECT_EQ(e.stats().filteredMeshes, 0u);  // an opaque mesh needs no any-hit filter
+  EXPECT_FALSE(e.intersect({0, 0, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);  // from behind
+  EXPECT_TRUE(e.intersect({0, 0, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);   // in front
   const Scene two = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}), true);
-  EXPECT_TRUE(EmbreeScene(two).intersect({0, 0, -6}, {0, 0, 1}, 0, kInf).hit);
+  const EmbreeScene doubleSided(two);
+  EXPECT_FALSE(doubleSided.stats().cameraBackFaceCulling);
+  EXPECT_TRUE(doubleSided.intersect({0, 0, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
+}
+
+TEST(EmbreeScene, TransportRaysMeetSingleSidedSurfacesFromBothSides) {
+  // A one-sided wall blocks light from behind as from in front: no light leaks through it.
+  const Scene s = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  const EmbreeScene e(s);
+  const TraceHit behind = e.intersect({0, 0, -6}, {0, 0, 1}, 0, kInf);
+  ASSERT_TRUE(behind.hit);
+  EXPECT_FLOAT_EQ(behind.t, 3.0f);
+  EXPECT_TRUE(e.occluded({0, 0, -6}, {0, 0, 1}, 0, kInf));
+  BatchRayHit bounce;
+  bounce.ray.set({0, 0, -6}, {0, 0, 1}, 0.0f, kInf);
+  e.intersectBatch(&bounce, 1, BatchCall::Stream);
+  EXPECT_TRUE(bounce.traceHit().hit);
+  BatchRayHit primary;
+  primary.ray.set({0, 0, -6}, {0, 0, 1}, 0.0f, kInf);
+  e.intersectBatch(&primary, 1, BatchCall::Stream, RayRole::Camera);
+  EXPECT_FALSE(primary.traceHit().hit);
 }
 
 TEST(EmbreeScene, MirroredInstanceKeepsItsFrontFace) {
@@ -50,8 +71,8 @@ TEST(EmbreeScene, MirroredInstanceKeepsItsFrontFace) {
   const glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), {0, 0, -3}), {-1, 1, 1});
   const Scene s = oneSquare(t);  // EmbreeScene keeps a reference: the scene must outlive it
   const EmbreeScene e(s);
-  EXPECT_TRUE(e.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf).hit);
-  EXPECT_FALSE(e.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf).hit);
+  EXPECT_TRUE(e.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
+  EXPECT_FALSE(e.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
 }
 
 TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
@@ -70,6 +91,11 @@ TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
   EXPECT_TRUE(e.intersect({-0.5f, 0, 0}, {0, 0, -1}, 0, kInf).hit);  // u = 0.25
   EXPECT_FALSE(e.intersect({0.5f, 0, 0}, {0, 0, -1}, 0, kInf).hit);  // u = 0.75
   EXPECT_FALSE(e.occluded({0.5f, 0, 0}, {0, 0, -1}, 0, kInf));
+  // A camera ray runs both filters: the hole and, single-sided, the back face.
+  EXPECT_TRUE(e.intersect({-0.5f, 0, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
+  EXPECT_FALSE(e.intersect({0.5f, 0, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
+  EXPECT_FALSE(e.intersect({-0.5f, 0, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
+  EXPECT_TRUE(e.intersect({-0.5f, 0, -6}, {0, 0, 1}, 0, kInf).hit);
 }
 
 TEST(EmbreeScene, MovedInstancesAreFoundAfterUpdate) {

@@ -53,10 +53,16 @@ TEST(RayRecorder, ReplayFindsWhatTheWrappersFind) {
   EmbreeScene embree(scene);
   const std::vector<RecordedRay> rays = recordedRays(scene, embree);
   ReplayCounts expected;
+  size_t cameraRays = 0;
   for (const RecordedRay& r : rays)
-    if (r.kind == RecordedRay::Kind::Intersect) {
+    if (r.kind != RecordedRay::Kind::Occluded) {
+      const bool camera = r.kind == RecordedRay::Kind::Camera;
+      cameraRays += camera;
       ++expected.intersectRays;
-      expected.hits += embree.intersect(r.origin, r.dir, r.tnear, r.tfar).hit;
+      expected.hits += embree
+                           .intersect(r.origin, r.dir, r.tnear, r.tfar,
+                                      camera ? RayRole::Camera : RayRole::Transport)
+                           .hit;
     } else {
       ++expected.occludedRays;
       expected.blocked += embree.occluded(r.origin, r.dir, r.tnear, r.tfar);
@@ -67,6 +73,7 @@ TEST(RayRecorder, ReplayFindsWhatTheWrappersFind) {
   EXPECT_EQ(got.occludedRays, expected.occludedRays);
   EXPECT_EQ(got.blocked, expected.blocked);
   EXPECT_GT(got.hits, 0u);
+  EXPECT_GT(cameraRays, 0u);  // pt's primary rays, replayed with the camera's culling
 }
 
 // A ReplayHitShader that returns 1 where the replay's hit is intersect()'s for that ray and

@@ -55,7 +55,8 @@ EyeImage scalarReference(const TraceContext& ctx, const EyeCamera& cam, uint32_t
         const glm::vec2 p =
             glm::vec2(x + 0.5f, y + 0.5f) + samplePosition(ctx.settings.sampler, c.sampleIndex());
         const glm::vec3 dir = cam.rayDirection(p.x, p.y);
-        const TraceHit th = ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity);
+        const TraceHit th =
+            ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity, RayRole::Camera);
         if (!th.hit) {
           e.emitted += ctx.lights.environmentRadiance(dir);
           ++e.misses;
@@ -108,7 +109,8 @@ TEST(Wavefront, APathsResultDoesNotDependOnItsBatch) {
   for (int y = 0; y < f.cam.height; ++y)
     for (int x = 0; x < f.cam.width; ++x) {
       const glm::vec3 dir = f.cam.pixelRay(x, y);
-      const TraceHit th = f.embree.intersect(f.cam.pose.position, dir, 0.0f, kInfinity);
+      const TraceHit th =
+          f.embree.intersect(f.cam.pose.position, dir, 0.0f, kInfinity, RayRole::Camera);
       if (!th.hit) continue;
       starts.push_back(
           {surfaceAt(f.scene, th.instance, th.triangle, th.b1, th.b2, dir), -dir,
