@@ -7,6 +7,7 @@
 #include <tbb/parallel_reduce.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/animation.h"
 #include "trace/rng.h"
 #include "trace/surface.h"
 #include "trace/texture_sampling.h"
@@ -41,7 +43,16 @@ struct FilterData {
   bool alphaMask = false;      // MASK material: reject hits below the alpha cutoff
   bool alphaBlend = false;     // BLEND material: accept hits with probability alpha
   bool cullBackFaces = false;  // single-sided material: back faces are invisible (glTF 3.9.5)
+  // Its triangles are in the top level in world space, mirrored by their instance's
+  // transform: the world winding is the reverse of the front's.
+  bool flipped = false;
 };
+
+// The instance a hit belongs to: Embree's instance id, or, for a mesh put in the top level
+// in world space (one instance alone uses it), the geometry id, which is the instance's.
+uint32_t instanceOfHit(uint32_t instID, uint32_t geomID) {
+  return instID != RTC_INVALID_GEOMETRY_ID ? instID : geomID;
+}
 
 float maskAlpha(const FilterData& d, uint32_t triangle, float u, float v) {
   return surfaceAlpha(*d.scene, *d.mesh, *d.material, triangle, u, v);
@@ -63,7 +74,9 @@ float coverageNumber(const RTCFilterFunctionNArguments* args, unsigned i, uint32
                   RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
                   RTCRayN_dir_z(args->ray, n, i)})
     h = hashCombine(h, floatBits(f));
-  h = hashCombine(hashCombine(h, RTCHitN_instID(args->hit, n, i, 0)), prim);
+  const uint32_t instance =
+      instanceOfHit(RTCHitN_instID(args->hit, n, i, 0), RTCHitN_geomID(args->hit, n, i));
+  h = hashCombine(hashCombine(h, instance), prim);
   return toUnitFloat(h);
 }
 
@@ -88,9 +101,10 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
 // ray meets from behind the counter-clockwise winding, in object space: Embree hands
 // instanced geometry's filters the ray and the hit's unnormalised geometric normal
 // (counter-clockwise front, Embree's RTC_GEOMETRY_TYPE_TRIANGLE convention) in the
-// instance's space, where a mirroring instance transform cannot flip the answer. Using
-// Embree's Ng instead of recomputing the normal from the mesh saves six indexed loads and a
-// cross product per candidate hit.
+// instance's space, where a mirroring instance transform cannot flip the answer; a mesh in
+// the top level is in world space, where its 'flipped' says so. Using Embree's Ng instead of
+// recomputing the normal from the mesh saves six indexed loads and a cross product per
+// candidate hit.
 void cameraCullFilter(const RTCFilterFunctionNArguments* args) {
   const auto* d = static_cast<const FilterData*>(args->geometryUserPtr);
   if (!d->cullBackFaces) return;
@@ -99,7 +113,7 @@ void cameraCullFilter(const RTCFilterFunctionNArguments* args) {
     const float facing = RTCRayN_dir_x(args->ray, n, i) * RTCHitN_Ng_x(args->hit, n, i) +
                          RTCRayN_dir_y(args->ray, n, i) * RTCHitN_Ng_y(args->hit, n, i) +
                          RTCRayN_dir_z(args->ray, n, i) * RTCHitN_Ng_z(args->hit, n, i);
-    if (facing > 0.0f) args->valid[i] = 0;
+    if ((facing > 0.0f) != d->flipped && facing != 0.0f) args->valid[i] = 0;
   }
 }
 
@@ -109,39 +123,44 @@ struct EmbreeScene::Impl {
   const Scene& scene;
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
-  std::vector<RTCScene> meshScenes;
+  std::vector<RTCScene> meshScenes;  // null for a mesh in the top level
+  // Per instance: its instance geometry, or its mesh's triangles in the top level.
   std::vector<RTCGeometry> instanceGeometries;
+  std::vector<bool> inTopLevel;
   std::vector<FilterData> filterData;
   bool cameraCulling = false;  // some mesh is single-sided: camera rays carry cameraCullFilter
+  bool filterAlways = false;   // skips.anyHitFilter off: the alpha filter on every mesh
 
   explicit Impl(const Scene& s) : scene(s) {}
   ~Impl() {
     if (top) rtcReleaseScene(top);
-    for (RTCScene m : meshScenes) rtcReleaseScene(m);
+    for (RTCScene m : meshScenes)
+      if (m) rtcReleaseScene(m);
     if (device) rtcReleaseDevice(device);
   }
-  RTCScene buildMesh(size_t index, bool filterAlways, EmbreeStats& stats);
-  void buildInstances();
+  RTCGeometry triangles(size_t mesh, const glm::mat4* toWorld, EmbreeStats& stats);
+  RTCScene buildMesh(size_t index, EmbreeStats& stats);
+  void buildInstances(EmbreeStats& stats);
 };
 
-RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeStats& stats) {
+// The world-space copy of a mesh's vertices under 'toWorld'.
+void writeWorldVertices(glm::vec3* out, const Mesh& mesh, const glm::mat4& toWorld) {
+  for (size_t i = 0; i < mesh.vertexCount(); ++i)
+    out[i] = glm::vec3(toWorld * glm::vec4(mesh.positions[i], 1.0f));
+}
+
+// A mesh's triangle geometry with its filter data: in object space, or in world space under
+// 'toWorld' (a mesh in the top level).
+RTCGeometry EmbreeScene::Impl::triangles(size_t index, const glm::mat4* toWorld,
+                                         EmbreeStats& stats) {
   const Mesh& mesh = scene.meshes[index];
-  RTCScene s = rtcNewScene(device);
-  rtcSetSceneBuildQuality(s, mesh.triangleCount() <= kMediumQualityLimit ? RTC_BUILD_QUALITY_MEDIUM
-                                                                         : RTC_BUILD_QUALITY_LOW);
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (mesh.skinned()) {
-    // Its vertices move every pose: the BVH is refit, not rebuilt. Embree honours a
-    // geometry's REFIT quality only in a scene of LOW build quality (rtcSetGeometryBuildQuality
-    // (3): "uses the per-geometry build quality when the scene build quality is set to
-    // RTC_BUILD_QUALITY_LOW"); under MEDIUM a 131k-triangle grid was rebuilt, 25 ms a pose.
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
-  }
   auto* v = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
       g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), mesh.vertexCount()));
-  std::copy(mesh.positions.begin(), mesh.positions.end(), v);
+  if (toWorld)
+    writeWorldVertices(v, mesh, *toWorld);
+  else
+    std::copy(mesh.positions.begin(), mesh.positions.end(), v);
   auto* i = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
       g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
   std::copy(mesh.indices.begin(), mesh.indices.end(), i);
@@ -152,13 +171,32 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
        &mat,
        mat.alphaMode == AlphaMode::Mask,
        mat.alphaMode == AlphaMode::Blend,
-       mat.cullsBackFaces()};
+       mat.cullsBackFaces(),
+       toWorld && glm::determinant(glm::mat3(*toWorld)) < 0.0f};
   rtcSetGeometryUserData(g, &d);  // what either filter reads
   if (d.alphaMask || d.alphaBlend || filterAlways) {
     ++stats.filteredMeshes;
     rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
     rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
     stats.alphaFilter |= d.alphaMask || d.alphaBlend;
+  }
+  return g;
+}
+
+RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
+  const Mesh& mesh = scene.meshes[index];
+  RTCScene s = rtcNewScene(device);
+  rtcSetSceneBuildQuality(s, mesh.triangleCount() <= kMediumQualityLimit ? RTC_BUILD_QUALITY_MEDIUM
+                                                                         : RTC_BUILD_QUALITY_LOW);
+  RTCGeometry g = triangles(index, nullptr, stats);
+  if (mesh.skinned()) {
+    // Its vertices move every pose: the BVH is refit, not rebuilt. Embree honours a
+    // geometry's REFIT quality only in a scene of LOW build quality (rtcSetGeometryBuildQuality
+    // (3): "uses the per-geometry build quality when the scene build quality is set to
+    // RTC_BUILD_QUALITY_LOW"); under MEDIUM a 131k-triangle grid was rebuilt, 25 ms a pose.
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
   }
   // Embree runs a context's filter on a scene's hits only where the scene (each instanced one
   // too) enables it.
@@ -172,18 +210,33 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, bool filterAlways, EmbreeSta
   return s;
 }
 
-void EmbreeScene::Impl::buildInstances() {
-  // The top level changes when instances move: LOW quality + DYNAMIC makes re-commits cheap.
+// Two levels, instances of mesh BVHs; or one, every mesh's triangles in the top level in
+// world space, where no mesh serves two instances (its BVH would be built for one, and a ray
+// pays an instance's transform and a second traversal for nothing: cornell's and spheres'
+// rays traced 12-16 % faster so, docs/MEASUREMENTS.md "One BVH level where no mesh is
+// shared"). Not both in one scene: Embree keeps a BVH per primitive type, so a ray would
+// traverse an instance BVH and a triangle BVH (atrium, with its floor alone in the top
+// level, traced 4-8 % slower). A scene whose instances move (an animation) keeps two levels:
+// moving a top-level mesh rewrites its vertices and rebuilds the top level.
+void EmbreeScene::Impl::buildInstances(EmbreeStats& stats) {
   top = rtcNewScene(device);
+  const bool anyInTop = std::find(inTopLevel.begin(), inTopLevel.end(), true) != inTopLevel.end();
+  // The top level changes when instances move: LOW quality + DYNAMIC makes re-commits
+  // cheap. With the meshes in it (a still scene), MEDIUM, as a mesh's own BVH.
   rtcSetSceneFlags(top,
-                   RTCSceneFlags(RTC_SCENE_FLAG_DYNAMIC |
+                   RTCSceneFlags((anyInTop ? 0 : RTC_SCENE_FLAG_DYNAMIC) |
                                  (cameraCulling ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
-  rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);
+  rtcSetSceneBuildQuality(top, anyInTop ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_LOW);
   for (size_t k = 0; k < scene.instances.size(); ++k) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(g, meshScenes[scene.instances[k].mesh]);
-    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                            &scene.instances[k].transform[0][0]);
+    const Instance& inst = scene.instances[k];
+    RTCGeometry g = nullptr;
+    if (inTopLevel[k]) {
+      g = triangles(size_t(inst.mesh), &inst.transform, stats);
+    } else {
+      g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(g, meshScenes[size_t(inst.mesh)]);
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transform[0][0]);
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(top, g, unsigned(k));  // geometry id == Scene instance index
     instanceGeometries.push_back(g);
@@ -191,6 +244,22 @@ void EmbreeScene::Impl::buildInstances() {
   }
   rtcCommitScene(top);
 }
+
+namespace {
+
+// Whether the scene is traced with one BVH level (EmbreeScene::Impl::buildInstances): it does
+// not move, and no mesh is instanced twice or skinned.
+bool isOneLevel(const Scene& scene) {
+  if (isAnimated(scene) || scene.instances.empty()) return false;
+  std::vector<uint8_t> used(scene.meshes.size(), 0);
+  for (const Instance& inst : scene.instances) {
+    const size_t m = size_t(inst.mesh);
+    if (used[m]++ || scene.meshes[m].skinned()) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
     : impl_(std::make_unique<Impl>(scene)) {
@@ -202,13 +271,25 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   for (const Mesh& mesh : scene.meshes)
     impl_->cameraCulling |= scene.materials[size_t(mesh.material)].cullsBackFaces();
   stats_.cameraBackFaceCulling = impl_->cameraCulling;
-  for (size_t m = 0; m < scene.meshes.size(); ++m)
-    impl_->meshScenes.push_back(impl_->buildMesh(m, !skips.anyHitFilter, stats_));
-  impl_->buildInstances();
-  stats_.meshBvhs = scene.meshes.size();
+  impl_->filterAlways = !skips.anyHitFilter;
+  // One level where the scene does not move and no mesh serves two instances or is skinned
+  // (buildInstances).
+  const bool oneLevel = isOneLevel(scene);
+  impl_->inTopLevel.assign(scene.instances.size(), oneLevel);
+  stats_.instancesInTopLevel = oneLevel ? scene.instances.size() : 0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const bool used = std::any_of(scene.instances.begin(), scene.instances.end(),
+                                  [&](const Instance& i) { return size_t(i.mesh) == m; });
+    const bool inTop = oneLevel && used;
+    impl_->meshScenes.push_back(inTop ? nullptr : impl_->buildMesh(m, stats_));
+    stats_.meshBvhs += !inTop;
+  }
+  impl_->buildInstances(stats_);
   stats_.instances = scene.instances.size();
   stats_.buildQuality =
-      "meshes MEDIUM (LOW above 4M triangles; skinned: LOW, refit), top level LOW dynamic";
+      oneLevel ? "one level: every mesh in world space, MEDIUM"
+               : "meshes MEDIUM (LOW above 4M triangles; skinned: LOW, refit), top level LOW "
+                 "dynamic";
   stats_.buildMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -234,7 +315,7 @@ TraceHit traceHitOf(const RTCRayHit& rh) {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.hit = true;
   h.t = rh.ray.tfar;
-  h.instance = rh.hit.instID[0];
+  h.instance = instanceOfHit(rh.hit.instID[0], rh.hit.geomID);
   h.triangle = rh.hit.primID;
   h.b1 = rh.hit.u;
   h.b2 = rh.hit.v;
@@ -334,7 +415,7 @@ ReplayHit replayHitOf(const RTCRayHit& rh) {
   ReplayHit h;
   h.t = rh.ray.tfar;
   h.ng = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-  h.instance = rh.hit.instID[0];
+  h.instance = instanceOfHit(rh.hit.instID[0], rh.hit.geomID);
   h.triangle = rh.hit.primID;
   h.b1 = rh.hit.u;
   h.b2 = rh.hit.v;
@@ -391,8 +472,14 @@ std::vector<RecordedRay> RayRecorder::take() {
 void EmbreeScene::updateInstanceTransforms() {
   for (size_t k = 0; k < impl_->instanceGeometries.size(); ++k) {
     RTCGeometry g = impl_->instanceGeometries[k];
-    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                            &impl_->scene.instances[k].transform[0][0]);
+    const Instance& inst = impl_->scene.instances[k];
+    if (impl_->inTopLevel[k]) {  // a still scene's: only a caller that moved it comes here
+      auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+      writeWorldVertices(v, impl_->scene.meshes[size_t(inst.mesh)], inst.transform);
+      rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+    } else {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transform[0][0]);
+    }
     rtcCommitGeometry(g);
   }
   rtcCommitScene(impl_->top);

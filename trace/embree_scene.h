@@ -32,8 +32,11 @@ struct TraceHit {
 enum class RayRole : uint8_t { Transport, Camera };
 
 struct EmbreeStats {
-  size_t meshBvhs = 0;
+  size_t meshBvhs = 0;  // meshes with a BVH of their own, instanced
   size_t instances = 0;
+  // Instances whose mesh is in the top level itself: all of them in a still scene where no mesh
+  // is shared or skinned (one BVH level), else none.
+  size_t instancesInTopLevel = 0;
   bool alphaFilter = false;  // any-hit alpha test installed (scene has MASK or BLEND materials)
   // Camera rays cull single-sided back faces (the scene has single-sided meshes): a filter
   // in their intersect context, which transport rays go without.
@@ -108,7 +111,8 @@ struct alignas(16) BatchRayHit {
 
   TraceHit traceHit() const {
     if (geomID == ~0u) return {};
-    return {true, ray.tfar, instID, primID, u, v};
+    // A mesh in the top level (EmbreeScene) has no instance id: its geometry id is the instance.
+    return {true, ray.tfar, instID != ~0u ? instID : geomID, primID, u, v};
   }
 };
 

@@ -61,7 +61,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
   thread_local std::vector<HitGeometry> geometry;
   hits.clear();
   for (const BatchRayHit& h : primary)
-    if (h.geomID != ~0u) hits.push_back({h.instID, h.primID, h.u, h.v});
+    if (h.geomID != ~0u) hits.push_back({h.traceHit().instance, h.primID, h.u, h.v});
   geometry.resize(hits.size());
   hitGeometries(ctx.scene, hits, geometry);
   size_t k = 0;  // the next hit's index in hits and geometry

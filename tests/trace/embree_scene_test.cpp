@@ -69,10 +69,20 @@ TEST(EmbreeScene, MirroredInstanceKeepsItsFrontFace) {
   // Scale x by -1: winding flips in world space, but the face still faces +Z in its own
   // space, as the G-buffer sees it (GBufferFeatures.MirroredInstance...).
   const glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), {0, 0, -3}), {-1, 1, 1});
-  const Scene s = oneSquare(t);  // EmbreeScene keeps a reference: the scene must outlive it
+  // One mesh, one instance: traced with one level, in world space, where the winding is
+  // mirrored; the same mesh shared by a second instance far away keeps two levels.
+  Scene s = oneSquare(t);  // EmbreeScene keeps a reference: the scene must outlive it
   const EmbreeScene e(s);
+  ASSERT_EQ(e.stats().instancesInTopLevel, 1u);
   EXPECT_TRUE(e.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
   EXPECT_FALSE(e.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
+  Scene twice = s;
+  twice.instances.push_back(
+      {0, glm::translate(glm::mat4(1.0f), {100, 0, 0}), glm::mat4(1.0f), "far"});
+  const EmbreeScene e2(twice);
+  ASSERT_EQ(e2.stats().instancesInTopLevel, 0u);
+  EXPECT_TRUE(e2.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
+  EXPECT_FALSE(e2.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
 }
 
 TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
@@ -96,6 +106,39 @@ TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
   EXPECT_FALSE(e.intersect({0.5f, 0, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
   EXPECT_FALSE(e.intersect({-0.5f, 0, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
   EXPECT_TRUE(e.intersect({-0.5f, 0, -6}, {0, 0, 1}, 0, kInf).hit);
+}
+
+// Where no mesh serves two instances, the meshes go into the top level (one BVH level) and a
+// hit still names its instance; a shared mesh keeps the two levels. The same rays find the
+// same instances and triangles either way.
+TEST(EmbreeScene, OneLevelWhereNoMeshIsSharedAndHitsStillNameTheirInstance) {
+  Scene unique = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
+  addSquare(unique, 1.0f, 0, glm::translate(glm::mat4(1.0f), {5, 0, -3}));
+  Scene shared = unique;
+  shared.meshes.pop_back();
+  shared.instances[1].mesh = 0;  // both squares from one mesh
+  const EmbreeScene one(unique), two(shared);
+  EXPECT_EQ(one.stats().instancesInTopLevel, 2u);
+  EXPECT_EQ(one.stats().meshBvhs, 0u);
+  EXPECT_EQ(two.stats().instancesInTopLevel, 0u);
+  EXPECT_EQ(two.stats().meshBvhs, 1u);
+  for (const float x : {0.25f, 5.25f}) {
+    const TraceHit a = one.intersect({x, 0.5f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera);
+    const TraceHit b = two.intersect({x, 0.5f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera);
+    ASSERT_TRUE(a.hit && b.hit);
+    EXPECT_EQ(a.instance, x < 1.0f ? 0u : 1u);
+    EXPECT_EQ(a.instance, b.instance);
+    EXPECT_EQ(a.triangle, b.triangle);
+    // World-space vertices against a transformed ray: the same hit to float rounding of
+    // coordinates of size ~5 (a few ulp).
+    EXPECT_NEAR(a.t, b.t, 1e-5f);
+    EXPECT_NEAR(a.b1, b.b1, 1e-5f);
+    EXPECT_NEAR(a.b2, b.b2, 1e-5f);
+    BatchRayHit batch;
+    batch.ray.set({x, 0.5f, 0}, {0, 0, -1}, 0.0f, kInf);
+    one.intersectBatch(&batch, 1, BatchCall::Stream);
+    EXPECT_EQ(batch.traceHit().instance, a.instance);
+  }
 }
 
 TEST(EmbreeScene, MovedInstancesAreFoundAfterUpdate) {
