@@ -36,7 +36,7 @@ ShadingFloor::ShadingFloor(const Scene& scene) {
 ShadingFloor::HitFrame ShadingFloor::frameAt(const RecordedRay& ray, const ReplayHit& hit) const {
   HitFrame f;
   const glm::vec3 p = ray.origin + ray.dir * hit.t;
-  f.n = glm::normalize(normalToWorld_[hit.instance] * hit.ng);
+  f.n = glm::normalize(hit.instanced ? normalToWorld_[hit.instance] * hit.ng : hit.ng);
   if (glm::dot(f.n, ray.dir) > 0.0f) f.n = -f.n;
   f.origin = p + f.n * (1e-4f * (1.0f + glm::length(p)));
   f.toLight = light_ - f.origin;

@@ -277,10 +277,10 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   const bool oneLevel = isOneLevel(scene);
   impl_->inTopLevel.assign(scene.instances.size(), oneLevel);
   stats_.instancesInTopLevel = oneLevel ? scene.instances.size() : 0;
+  std::vector<uint8_t> used(scene.meshes.size(), 0);
+  for (const Instance& inst : scene.instances) used[size_t(inst.mesh)] = 1;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const bool used = std::any_of(scene.instances.begin(), scene.instances.end(),
-                                  [&](const Instance& i) { return size_t(i.mesh) == m; });
-    const bool inTop = oneLevel && used;
+    const bool inTop = oneLevel && used[m];
     impl_->meshScenes.push_back(inTop ? nullptr : impl_->buildMesh(m, stats_));
     stats_.meshBvhs += !inTop;
   }
@@ -415,6 +415,7 @@ ReplayHit replayHitOf(const RTCRayHit& rh) {
   ReplayHit h;
   h.t = rh.ray.tfar;
   h.ng = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  h.instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
   h.instance = instanceOfHit(rh.hit.instID[0], rh.hit.geomID);
   h.triangle = rh.hit.primID;
   h.b1 = rh.hit.u;

@@ -131,10 +131,11 @@ struct ReplayCounts {
 };
 
 // The closest hit of a replayed intersect ray: its distance along the ray, Embree's
-// unnormalised geometric normal (instance space), the instance and triangle, barycentrics.
+// unnormalised geometric normal, the instance and triangle, barycentrics.
 struct ReplayHit {
   float t = 0.0f;
-  glm::vec3 ng{0.0f};
+  glm::vec3 ng{0.0f};     // in the instance's space, or in world space where 'instanced' is false
+  bool instanced = true;  // false: a mesh of a one-level scene, in the top level in world space
   uint32_t instance = 0, triangle = 0;
   float b1 = 0.0f, b2 = 0.0f;
 };
