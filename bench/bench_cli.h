@@ -13,6 +13,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/gltf_loader.h"
 #include "core/options.h"
 
 namespace photovr {
@@ -21,6 +22,32 @@ namespace photovr {
 inline std::string builtinSceneArgument(const std::string& name) {
   if (!isBuiltinScene(name)) makeBuiltinScene(name);  // throws the UsageError
   return name;
+}
+
+// 'spec' if it is a built-in scene's name or an existing .gltf/.glb file; else a UsageError.
+inline std::string sceneArgument(const std::string& spec) {
+  if (isBuiltinScene(spec)) return spec;
+  const std::string ext = std::filesystem::path(spec).extension().string();
+  if (ext == ".gltf" || ext == ".glb") {
+    if (!std::filesystem::is_regular_file(spec))
+      throw UsageError("--scene: no such file '" + spec + "'");
+    return spec;
+  }
+  return builtinSceneArgument(spec);  // throws the UsageError listing the built-in scenes
+}
+
+// The scenes a bench runs: every built-in one, or the one 'spec' names (sceneArgument).
+inline std::vector<std::string> benchSceneNames(const std::string& spec) {
+  return spec.empty() ? builtinSceneNames() : std::vector<std::string>{spec};
+}
+
+// A built-in scene by name, or a glTF file (its warnings to stderr).
+inline Scene loadBenchScene(const std::string& spec) {
+  if (isBuiltinScene(spec)) return makeBuiltinScene(spec);
+  Scene scene = loadGltf(spec);
+  for (const std::string& w : scene.warnings)
+    std::fprintf(stderr, "%s: warning: %s\n", spec.c_str(), w.c_str());
+  return scene;
 }
 
 // Runs 'run' on argv's options ('valued' take a value, 'flags' do not); "--help" prints

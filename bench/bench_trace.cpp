@@ -45,8 +45,9 @@ struct Config {
   std::string outDir = "out/bench";  // /out/ is git-ignored
   int width = 240, height = 270;     // a quarter of a DK2 eye per side: ~1 min for all rows
   int spp = 4;
-  int repeats = 5;          // best of N timed runs: the least disturbed by the rest of the machine
-  std::string scene;        // one built-in scene only (for profiling); empty: all
+  int repeats = 5;  // best of N timed runs: the least disturbed by the rest of the machine
+  std::string
+      scene;  // one built-in scene or a .gltf/.glb file (profiling, A/B); empty: all built-in
   bool renderOnly = false;  // no recording or replay: a profile then sees only the tracer
   BatchCall batchCall = BatchCall::Stream;  // how the wavefront tracer calls Embree
 };
@@ -211,7 +212,7 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
 
 const char* const kUsage =
     "usage: photovr_bench_trace [--out DIR] [--width W] [--height H] [--spp N] [--repeats N]\n"
-    "                           [--scene NAME] [--render-only] [--batch stream|single]\n"
+    "                           [--scene NAME|FILE] [--render-only] [--batch stream|single]\n"
     "The tracer against bare rtcIntersect1/rtcOccluded1 on the rays it cast, one eye, per\n"
     "built-in scene, on 1 thread and all; writes bench_trace.csv to --out (out/bench).\n"
     "lamb, bsdf: the same rays with the least shading per hit, Lambert or photovr's BSDF\n"
@@ -227,7 +228,7 @@ Config parse(const Options& o) {
   c.height = o.integer("--height", c.height, 1, 4096);
   c.spp = o.integer("--spp", c.spp, 1, 4096);
   c.repeats = o.integer("--repeats", c.repeats, 1, 1000);
-  if (o.has("--scene")) c.scene = builtinSceneArgument(o.text("--scene", ""));
+  if (o.has("--scene")) c.scene = sceneArgument(o.text("--scene", ""));
   c.renderOnly = o.has("--render-only");
   const std::string call = o.text("--batch", "stream");
   if (call != "stream" && call != "single")
@@ -248,9 +249,9 @@ int run(const Config& opt) {
   std::printf("%-8s %3s %9s %9s %9s %9s %9s %7s %7s %7s\n", "", "", "Mrays/s", "Mrays/s", "Mrays/s",
               "Mrays/s", "Mrays/s", "lamb", "bsdf", "ph/raw");
   std::vector<Row> rows;
-  for (const std::string& name : builtinSceneNames()) {
-    if (!opt.scene.empty() && name != opt.scene) continue;
-    const Scene scene = makeBuiltinScene(name);
+  for (const std::string& name : benchSceneNames(opt.scene)) {
+    const Scene scene = loadBenchScene(name);
+    if (scene.cameras.empty()) throw InputError(name, "the scene has no camera to render from");
     for (int threads : {1, all}) {
       rows.push_back(measure(name, scene, threads, opt));
       printRow(rows.back());
