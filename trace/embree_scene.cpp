@@ -29,6 +29,10 @@ namespace {
 // ones fall back to LOW (58 ms per 1M) so loading stays interactive.
 constexpr size_t kMediumQualityLimit = 4'000'000;
 
+// One BVH level (every instance's mesh copied into world space) while the copies hold at most
+// this many times the triangles the meshes store (EmbreeScene::Impl::buildInstances).
+constexpr double kOneLevelCopies = 2.0;
+
 void embreeError(void*, RTCError code, const char* message) {
   // One Embree error callback (STYLE.md 12): Embree errors are broken invariants here,
   // never user input (the loader validated it), so they stop the program loudly.
@@ -127,7 +131,10 @@ struct EmbreeScene::Impl {
   // Per instance: its instance geometry, or its mesh's triangles in the top level.
   std::vector<RTCGeometry> instanceGeometries;
   std::vector<bool> inTopLevel;
+  // Per triangle geometry (a mesh's, or an instance's copy of it in the top level); reserved for
+  // all of them up front, as Embree keeps pointers to them.
   std::vector<FilterData> filterData;
+  std::vector<uint8_t> meshFiltered;  // per mesh: counted in EmbreeStats::filteredMeshes
   bool cameraCulling = false;  // some mesh is single-sided: camera rays carry cameraCullFilter
   bool filterAlways = false;   // skips.anyHitFilter off: the alpha filter on every mesh
 
@@ -165,7 +172,7 @@ RTCGeometry EmbreeScene::Impl::triangles(size_t index, const glm::mat4* toWorld,
       g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
   std::copy(mesh.indices.begin(), mesh.indices.end(), i);
   const Material& mat = scene.materials[mesh.material];
-  FilterData& d = filterData[index];
+  FilterData& d = filterData.emplace_back();
   d = {&scene,
        &mesh,
        &mat,
@@ -175,7 +182,8 @@ RTCGeometry EmbreeScene::Impl::triangles(size_t index, const glm::mat4* toWorld,
        toWorld && glm::determinant(glm::mat3(*toWorld)) < 0.0f};
   rtcSetGeometryUserData(g, &d);  // what either filter reads
   if (d.alphaMask || d.alphaBlend || filterAlways) {
-    ++stats.filteredMeshes;
+    stats.filteredMeshes += !meshFiltered[index];
+    meshFiltered[index] = 1;
     rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
     rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
     stats.alphaFilter |= d.alphaMask || d.alphaBlend;
@@ -210,14 +218,19 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
   return s;
 }
 
-// Two levels, instances of mesh BVHs; or one, every mesh's triangles in the top level in
-// world space, where no mesh serves two instances (its BVH would be built for one, and a ray
-// pays an instance's transform and a second traversal for nothing: cornell's and spheres'
-// rays traced 12-16 % faster so, docs/MEASUREMENTS.md "One BVH level where no mesh is
-// shared"). Not both in one scene: Embree keeps a BVH per primitive type, so a ray would
-// traverse an instance BVH and a triangle BVH (atrium, with its floor alone in the top
-// level, traced 4-8 % slower). A scene whose instances move (an animation) keeps two levels:
-// moving a top-level mesh rewrites its vertices and rebuilds the top level.
+// Two levels, instances of mesh BVHs; or one, every instance's mesh copied into the top level
+// in world space, where the copies are cheap (isOneLevel): a ray then pays no instance
+// transform and no second traversal (cornell's and spheres' rays traced 12-16 % faster so,
+// docs/MEASUREMENTS.md "One BVH level where no mesh is shared"; spheres with meshes shared by
+// 2-10 instances 3-6 %, "Shared meshes copied"). The copies cost memory and build time (a
+// tenfold copy built 20-30x slower), so a scene whose meshes are shared more than
+// kOneLevelCopies-fold keeps two levels, as do heavily instanced scenes whose small shared
+// meshes trace faster instanced (atrium flattened, 41-fold: 7 % slower). Not both in one
+// scene: Embree keeps a BVH per primitive type, so a ray would traverse an instance BVH and a
+// triangle BVH (atrium, with its floor alone in the top level, traced 4-8 % slower; spheres'
+// meshes used once in a BVH of their own, instanced once beside shared ones, 5 % slower than
+// two levels). A scene whose instances move (an animation) keeps two levels: moving a
+// top-level mesh rewrites its vertices and rebuilds the top level.
 void EmbreeScene::Impl::buildInstances(EmbreeStats& stats) {
   top = rtcNewScene(device);
   const bool anyInTop = std::find(inTopLevel.begin(), inTopLevel.end(), true) != inTopLevel.end();
@@ -248,15 +261,19 @@ void EmbreeScene::Impl::buildInstances(EmbreeStats& stats) {
 namespace {
 
 // Whether the scene is traced with one BVH level (EmbreeScene::Impl::buildInstances): it does
-// not move, and no mesh is instanced twice or skinned.
+// not move, no mesh is skinned, and copying every instance's mesh into world space at most
+// kOneLevelCopies-folds the triangles the instanced meshes store.
 bool isOneLevel(const Scene& scene) {
   if (isAnimated(scene) || scene.instances.empty()) return false;
   std::vector<uint8_t> used(scene.meshes.size(), 0);
+  size_t instanced = 0, stored = 0;
   for (const Instance& inst : scene.instances) {
-    const size_t m = size_t(inst.mesh);
-    if (used[m]++ || scene.meshes[m].skinned()) return false;
+    const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
+    if (mesh.skinned()) return false;
+    instanced += mesh.triangleCount();
+    if (!used[size_t(inst.mesh)]++) stored += mesh.triangleCount();
   }
-  return true;
+  return double(instanced) <= kOneLevelCopies * double(stored);
 }
 
 }  // namespace
@@ -267,13 +284,14 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
   rtcSetDeviceErrorFunction(impl_->device, embreeError, nullptr);
-  impl_->filterData.resize(scene.meshes.size());
+  impl_->filterData.reserve(scene.meshes.size() + scene.instances.size());
+  impl_->meshFiltered.assign(scene.meshes.size(), 0);
   for (const Mesh& mesh : scene.meshes)
     impl_->cameraCulling |= scene.materials[size_t(mesh.material)].cullsBackFaces();
   stats_.cameraBackFaceCulling = impl_->cameraCulling;
   impl_->filterAlways = !skips.anyHitFilter;
-  // One level where the scene does not move and no mesh serves two instances or is skinned
-  // (buildInstances).
+  // One level where the scene does not move, no mesh is skinned and the shared meshes' copies
+  // are cheap (isOneLevel, buildInstances).
   const bool oneLevel = isOneLevel(scene);
   impl_->inTopLevel.assign(scene.instances.size(), oneLevel);
   stats_.instancesInTopLevel = oneLevel ? scene.instances.size() : 0;
@@ -287,7 +305,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   impl_->buildInstances(stats_);
   stats_.instances = scene.instances.size();
   stats_.buildQuality =
-      oneLevel ? "one level: every mesh in world space, MEDIUM"
+      oneLevel ? "one level: every instance's mesh in world space, MEDIUM"
                : "meshes MEDIUM (LOW above 4M triangles; skinned: LOW, refit), top level LOW "
                  "dynamic";
   stats_.buildMilliseconds =

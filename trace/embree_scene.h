@@ -1,6 +1,7 @@
 // The Embree side of a Scene: one triangle geometry per Mesh in its own BVH, referenced by
 // one instance geometry per Scene instance in a top-level BVH (two-level, as the scene
-// instances them). Embree types stay inside trace/.
+// instances them); or, in a still scene whose shared meshes are cheap to copy, each instance's
+// mesh in world space in one BVH (one level). Embree types stay inside trace/.
 #pragma once
 
 #include <cstddef>
@@ -34,8 +35,9 @@ enum class RayRole : uint8_t { Transport, Camera };
 struct EmbreeStats {
   size_t meshBvhs = 0;  // meshes with a BVH of their own, instanced
   size_t instances = 0;
-  // Instances whose mesh is in the top level itself: all of them in a still scene where no mesh
-  // is shared or skinned (one BVH level), else none.
+  // Instances whose mesh is in the top level itself, copied into world space: all of them in a
+  // still scene where no mesh is skinned and the copies at most double the stored triangles
+  // (one BVH level), else none.
   size_t instancesInTopLevel = 0;
   bool alphaFilter = false;  // any-hit alpha test installed (scene has MASK or BLEND materials)
   // Camera rays cull single-sided back faces (the scene has single-sided meshes): a filter

@@ -70,19 +70,37 @@ TEST(EmbreeScene, MirroredInstanceKeepsItsFrontFace) {
   // space, as the G-buffer sees it (GBufferFeatures.MirroredInstance...).
   const glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), {0, 0, -3}), {-1, 1, 1});
   // One mesh, one instance: traced with one level, in world space, where the winding is
-  // mirrored; the same mesh shared by a second instance far away keeps two levels.
+  // mirrored; the same mesh shared by three more instances far away (a fourfold copy) keeps
+  // two levels.
   Scene s = oneSquare(t);  // EmbreeScene keeps a reference: the scene must outlive it
   const EmbreeScene e(s);
   ASSERT_EQ(e.stats().instancesInTopLevel, 1u);
   EXPECT_TRUE(e.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
   EXPECT_FALSE(e.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
-  Scene twice = s;
-  twice.instances.push_back(
-      {0, glm::translate(glm::mat4(1.0f), {100, 0, 0}), glm::mat4(1.0f), "far"});
-  const EmbreeScene e2(twice);
+  Scene shared = s;
+  for (const float x : {100.0f, 200.0f, 300.0f})
+    shared.instances.push_back(
+        {0, glm::translate(glm::mat4(1.0f), {x, 0, 0}), glm::mat4(1.0f), "far"});
+  const EmbreeScene e2(shared);
   ASSERT_EQ(e2.stats().instancesInTopLevel, 0u);
   EXPECT_TRUE(e2.intersect({0.2f, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera).hit);
   EXPECT_FALSE(e2.intersect({0.2f, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit);
+}
+
+// A mesh shared by a mirrored and an unmirrored instance, copied into one level: each copy
+// culls its own back faces (the camera filter's data is per copy, not per mesh).
+TEST(EmbreeScene, SharedMeshCopiesKeepTheirOwnFrontFaces) {
+  const glm::mat4 plain = glm::translate(glm::mat4(1.0f), {0, 0, -3});
+  Scene s = oneSquare(glm::scale(plain, {-1, 1, 1}));  // mirrored
+  s.instances.push_back({0, glm::translate(plain, {5, 0, 0}), glm::mat4(1.0f), "plain"});
+  const EmbreeScene e(s);
+  ASSERT_EQ(e.stats().instancesInTopLevel, 2u);
+  for (const float x : {0.2f, 5.2f}) {
+    const TraceHit front = e.intersect({x, 0.3f, 0}, {0, 0, -1}, 0, kInf, RayRole::Camera);
+    ASSERT_TRUE(front.hit) << x;
+    EXPECT_EQ(front.instance, x < 1.0f ? 0u : 1u);
+    EXPECT_FALSE(e.intersect({x, 0.3f, -6}, {0, 0, 1}, 0, kInf, RayRole::Camera).hit) << x;
+  }
 }
 
 TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
@@ -108,15 +126,22 @@ TEST(EmbreeScene, AlphaMaskHolesLetRaysThrough) {
   EXPECT_TRUE(e.intersect({-0.5f, 0, -6}, {0, 0, 1}, 0, kInf).hit);
 }
 
-// Where no mesh serves two instances, the meshes go into the top level (one BVH level) and a
-// hit still names its instance; a shared mesh keeps the two levels. The same rays find the
-// same instances and triangles either way.
-TEST(EmbreeScene, OneLevelWhereNoMeshIsSharedAndHitsStillNameTheirInstance) {
+// Where copying the shared meshes into world space at most doubles the triangles, every
+// instance's mesh goes into the top level (one BVH level) and a hit still names its instance;
+// a mesh shared more widely keeps the two levels. The same rays find the same instances and
+// triangles either way.
+TEST(EmbreeScene, OneLevelWhereCopiesAreCheapAndHitsStillNameTheirInstance) {
   Scene unique = oneSquare(glm::translate(glm::mat4(1.0f), {0, 0, -3}));
   addSquare(unique, 1.0f, 0, glm::translate(glm::mat4(1.0f), {5, 0, -3}));
+  Scene cheap = unique;  // a third square from the second's mesh: 3 squares' triangles for 2
+  cheap.instances.push_back({1, glm::translate(glm::mat4(1.0f), {50, 0, -3}), glm::mat4(1.0f), ""});
+  EXPECT_EQ(EmbreeScene(cheap).stats().instancesInTopLevel, 3u);
   Scene shared = unique;
   shared.meshes.pop_back();
-  shared.instances[1].mesh = 0;  // both squares from one mesh
+  shared.instances[1].mesh = 0;          // both squares from one mesh ...
+  for (const float y : {50.0f, 100.0f})  // ... and two more of it far away: fourfold
+    shared.instances.push_back(
+        {0, glm::translate(glm::mat4(1.0f), {0, y, -3}), glm::mat4(1.0f), ""});
   const EmbreeScene one(unique), two(shared);
   EXPECT_EQ(one.stats().instancesInTopLevel, 2u);
   EXPECT_EQ(one.stats().meshBvhs, 0u);
