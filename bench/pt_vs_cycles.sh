@@ -4,7 +4,8 @@
 # both on every core, runs alternating photovr / Cycles. Time per sample is the slope
 # between a low and a high sample count, (t_hi - t_lo) / ((hi - lo) W H), which leaves out
 # what a render costs once (start-up, import, BVH build, writing the image). Needs Debian's
-# blender (not installed by set-up: a large package, for measurement only). Punctual lights
+# blender and python3-numpy, which the peer script imports (not installed by set-up: large
+# packages, for measurement only). Punctual lights
 # go to Cycles in the importer's COMPAT mode (W = 4 pi cd, no 683 lm/W): photovr reads a
 # candela as a W/sr, and the default (SPEC) mode renders the atrium ~700x darker.
 #   bench/pt_vs_cycles.sh [BUILD=build] [OUT=out/pt_vs_cycles] [PAIRS=2]
