@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/bvh_layout.h"
 #include "core/scene_transform.h"
 
 namespace photovr {
@@ -159,7 +160,8 @@ void describeGeometry(std::ostream& out, const Scene& scene) {
   out << "meshes: " << count(scene.meshes.size()) << " (" << count(vertices) << " vertices, "
       << count(triangles) << " triangles stored)\n";
   out << "instances: " << count(scene.instances.size()) << " (" << count(instanced)
-      << " triangles instanced; " << count(shared) << " meshes instanced more than once)\n";
+      << " triangles instanced; " << count(shared) << (shared == 1 ? " mesh" : " meshes")
+      << " instanced more than once)\n";
   for (const Animation& a : scene.animations)
     out << "animation: '" << a.name << "', " << fmt("%.2f s", a.duration()) << ", "
         << a.channels.size()
@@ -254,6 +256,22 @@ void describeBounds(std::ostream& out, const Scene& scene) {
         << " m (re-based there: floats at the file's coordinates were too coarse)\n";
 }
 
+// How trace/embree_scene.cpp lays out the BVHs (core/bvh_layout.h), and why.
+void describeBvhLayout(std::ostream& out, const Scene& scene) {
+  const BvhLayout l = bvhLayoutOf(scene);
+  out << "  BVH: ";
+  if (l.oneLevel)
+    out << "one level (every instance's mesh in world space, " << fmt("%.2fx", l.copies)
+        << " the stored triangles)\n";
+  else if (l.moves)
+    out << "two levels (the scene moves: the top level, and skinned meshes, are refit)\n";
+  else if (scene.instances.empty())
+    out << "none (no instance)\n";
+  else
+    out << "two levels (copying the shared meshes would take " << fmt("%.1fx", l.copies)
+        << " the stored triangles, above " << fmt("%.0fx", kOneLevelCopies) << ")\n";
+}
+
 void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatures& f) {
   out << "renderer will use:\n";
   out << "  punctual lights: "
@@ -277,6 +295,7 @@ void describeRendererUse(std::ostream& out, const Scene& scene, const SceneFeatu
       << (f.singleSided ? "culled for camera rays (as rasterized), met by bounce and shadow rays"
                         : std::string("none (every material is double-sided)"))
       << "\n";
+  describeBvhLayout(out, scene);
   out << (isAnimated(scene) ? "  BVH refit: once per frame while the animation plays (the top "
                               "level; skinned meshes' BVHs too); never for a still at --time\n"
                             : "  BVH refit: never (static scene)\n");

@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/animation.h"
+#include "core/bvh_layout.h"
 #include "trace/rng.h"
 #include "trace/surface.h"
 #include "trace/texture_sampling.h"
@@ -28,10 +28,6 @@ namespace {
 // as fast as HIGH and builds 5x faster (platform.md: 1M triangles, 150 vs 800 ms). Larger
 // ones fall back to LOW (58 ms per 1M) so loading stays interactive.
 constexpr size_t kMediumQualityLimit = 4'000'000;
-
-// One BVH level (every instance's mesh copied into world space) while the copies hold at most
-// this many times the triangles the meshes store (EmbreeScene::Impl::buildInstances).
-constexpr double kOneLevelCopies = 2.0;
 
 void embreeError(void*, RTCError code, const char* message) {
   // One Embree error callback (STYLE.md 12): Embree errors are broken invariants here,
@@ -219,7 +215,7 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
 }
 
 // Two levels, instances of mesh BVHs; or one, every instance's mesh copied into the top level
-// in world space, where the copies are cheap (isOneLevel): a ray then pays no instance
+// in world space, where the copies are cheap (core/bvh_layout.h): a ray then pays no instance
 // transform and no second traversal (cornell's and spheres' rays traced 12-16 % faster so,
 // docs/MEASUREMENTS.md "One BVH level where no mesh is shared"; spheres with meshes shared by
 // 2-10 instances 3-6 %, "Shared meshes copied"). The copies cost memory and build time (a
@@ -258,26 +254,6 @@ void EmbreeScene::Impl::buildInstances(EmbreeStats& stats) {
   rtcCommitScene(top);
 }
 
-namespace {
-
-// Whether the scene is traced with one BVH level (EmbreeScene::Impl::buildInstances): it does
-// not move, no mesh is skinned, and copying every instance's mesh into world space at most
-// kOneLevelCopies-folds the triangles the instanced meshes store.
-bool isOneLevel(const Scene& scene) {
-  if (isAnimated(scene) || scene.instances.empty()) return false;
-  std::vector<uint8_t> used(scene.meshes.size(), 0);
-  size_t instanced = 0, stored = 0;
-  for (const Instance& inst : scene.instances) {
-    const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
-    if (mesh.skinned()) return false;
-    instanced += mesh.triangleCount();
-    if (!used[size_t(inst.mesh)]++) stored += mesh.triangleCount();
-  }
-  return double(instanced) <= kOneLevelCopies * double(stored);
-}
-
-}  // namespace
-
 EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
     : impl_(std::make_unique<Impl>(scene)) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -291,8 +267,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
   stats_.cameraBackFaceCulling = impl_->cameraCulling;
   impl_->filterAlways = !skips.anyHitFilter;
   // One level where the scene does not move, no mesh is skinned and the shared meshes' copies
-  // are cheap (isOneLevel, buildInstances).
-  const bool oneLevel = isOneLevel(scene);
+  // are cheap (core/bvh_layout.h, buildInstances).
+  const bool oneLevel = bvhLayoutOf(scene).oneLevel;
   impl_->inTopLevel.assign(scene.instances.size(), oneLevel);
   stats_.instancesInTopLevel = oneLevel ? scene.instances.size() : 0;
   std::vector<uint8_t> used(scene.meshes.size(), 0);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/builtin_scenes.h"
+#include "core/bvh_layout.h"
 #include "core/mesh_gen.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,6 +23,31 @@ Scene oneQuad(const Material& material) {
   s.meshes.push_back(makeQuad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}));
   s.instances.push_back(Instance{});
   return s;
+}
+
+// The BVH layout info prints is the one the tracer builds (core/bvh_layout.h): one level
+// while copying the shared meshes at most doubles the stored triangles.
+TEST(SceneInfo, BvhLevelsFollowWhatCopyingTheSharedMeshesWouldCost) {
+  Scene s = oneQuad(Material{});
+  EXPECT_TRUE(bvhLayoutOf(s).oneLevel);
+  EXPECT_TRUE(contains(describeScene(s),
+                       "BVH: one level (every instance's mesh in world space, "
+                       "1.00x the stored triangles)"));
+  s.instances.push_back(Instance{});  // the quad twice: copies hold 2x its triangles
+  EXPECT_DOUBLE_EQ(bvhLayoutOf(s).copies, 2.0);
+  EXPECT_TRUE(bvhLayoutOf(s).oneLevel);
+  s.instances.push_back(Instance{});  // three times: above 2x
+  EXPECT_FALSE(bvhLayoutOf(s).oneLevel);
+  EXPECT_TRUE(contains(describeScene(s),
+                       "BVH: two levels (copying the shared meshes would take "
+                       "3.0x the stored triangles, above 2x)"))
+      << describeScene(s);
+  Scene skinned = oneQuad(Material{});
+  skinned.meshes[0].skinning.skin = 0;
+  EXPECT_TRUE(bvhLayoutOf(skinned).moves);
+  EXPECT_FALSE(bvhLayoutOf(skinned).oneLevel);
+  EXPECT_TRUE(contains(describeScene(makeBuiltinScene("atrium")), "BVH: two levels"));
+  EXPECT_TRUE(contains(describeScene(makeBuiltinScene("cornell")), "BVH: one level"));
 }
 
 TEST(SceneInfo, EmptySceneNeedsNothingAndWarnsItIsBlack) {
