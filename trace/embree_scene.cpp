@@ -219,7 +219,7 @@ RTCScene EmbreeScene::Impl::buildMesh(size_t index, EmbreeStats& stats) {
 // transform and no second traversal (cornell's and spheres' rays traced 12-16 % faster so,
 // docs/MEASUREMENTS.md "One BVH level where no mesh is shared"; spheres with meshes shared by
 // 2-10 instances 3-6 %, "Shared meshes copied"). The copies cost memory and build time (a
-// tenfold copy built 20-30x slower), so a scene whose meshes are shared more than
+// tenfold copy built 18-28x slower), so a scene whose meshes are shared more than
 // kOneLevelCopies-fold keeps two levels, as do heavily instanced scenes whose small shared
 // meshes trace faster instanced (atrium flattened, 41-fold: 7 % slower). Not both in one
 // scene: Embree keeps a BVH per primitive type, so a ray would traverse an instance BVH and a
