@@ -46,8 +46,8 @@ struct Config {
   int width = 240, height = 270;     // a quarter of a DK2 eye per side: ~1 min for all rows
   int spp = 4;
   int repeats = 5;  // best of N timed runs: the least disturbed by the rest of the machine
-  std::string
-      scene;  // one built-in scene or a .gltf/.glb file (profiling, A/B); empty: all built-in
+  // One built-in scene or a .gltf/.glb file (profiling, A/B); empty: every built-in scene.
+  std::string scene;
   bool renderOnly = false;  // no recording or replay: a profile then sees only the tracer
   BatchCall batchCall = BatchCall::Stream;  // how the wavefront tracer calls Embree
 };
