@@ -131,10 +131,12 @@ V3<float> v3(const glm::vec3& v) {
 // first texture coordinates), asked for while the gather loads the positions: surfaceAt runs
 // after the whole batch's geometry, by when they have arrived. Its first read of a normal was
 // a sixth of surfaceAt's time, a miss to L3 at every new triangle (perf annotate, spheres).
+// A mesh built in code may lack either attribute (surfaceAt reads it as zero then).
 void prefetchShadingCorners(const Mesh& mesh, const uint32_t* idx) {
+  const bool normals = !mesh.normals.empty(), uvs = !mesh.uv0.empty();
   for (int k = 0; k < 3; ++k) {
-    __builtin_prefetch(&mesh.normals[idx[k]]);
-    if (!mesh.uv0.empty()) __builtin_prefetch(&mesh.uv0[idx[k]]);
+    if (normals) __builtin_prefetch(mesh.normals.data() + idx[k]);
+    if (uvs) __builtin_prefetch(mesh.uv0.data() + idx[k]);
   }
 }
 
