@@ -195,11 +195,12 @@ GBufferImage GBufferPass::read(int eye) const {
   return img;
 }
 
-void GBufferPass::read(int eye, GBufferImage& img) const {
+void GBufferPass::read(int eye, GBufferImage& img, GBufferRead what) const {
   img.width = width_;
   img.height = height_;
   const int w = width_, h = height_;
   readLayer(layers_[0], kFormats[0], w, h, eye, img.visibility);
+  if (what == GBufferRead::Visibility) return img.clearAllButVisibility();
   readLayer(layers_[1], kFormats[1], w, h, eye, img.normal);
   readLayer(layers_[2], kFormats[2], w, h, eye, img.baseColor);
   readLayer(layers_[3], kFormats[3], w, h, eye, img.material);

@@ -33,12 +33,23 @@ struct GBufferImage {
   std::vector<glm::vec2> motion;
   std::vector<float> depth;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
+  // Empties every target but the visibility record (their storage kept for the next read).
+  void clearAllButVisibility() {
+    normal.clear(), baseColor.clear(), material.clear(), emission.clear();
+    motion.clear(), depth.clear();
+  }
   // Pixel i's visibility target as a record (instance kNoHitInstance: the background).
   VisibilityRecord record(size_t i) const {
     const glm::uvec4 v = visibility[i];
     return {v.x, v.y, glm::uintBitsToFloat(v.z), glm::uintBitsToFloat(v.w)};
   }
 };
+
+// What a read-back copies to the CPU: every target (the G-buffer mode's images, tests), or
+// the visibility record alone, which is all the hybrid tracer reads (it rebuilds each hit
+// from the record; the denoiser reads the other targets on the GPU). The record is 16 of
+// the 84 bytes a pixel has across the targets, and needs no conversion from half floats.
+enum class GBufferRead { All, Visibility };
 
 enum class EyeRouting {
   Layered,     // gl_Layer from the vertex shader (GL_ARB_shader_viewport_layer_array)
@@ -62,7 +73,7 @@ class GBufferPass {
   // Into 'img', reusing its vectors' storage: fresh memory costs its first touch, ~3 us per
   // 4 KiB page in the VM measured here, ~45 ms per 960x1080 RGBA32F target (docs/
   // ARCHITECTURE.md, "Memory reuse"); a sequence reads into the same image every frame.
-  void read(int eye, GBufferImage& img) const;
+  void read(int eye, GBufferImage& img, GBufferRead what = GBufferRead::All) const;
   void finish() const;  // waits until the G-buffer is complete (for timing stages apart)
 
   EyeRouting routing() const { return routing_; }

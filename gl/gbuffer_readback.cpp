@@ -15,15 +15,16 @@ void copyOut(const uint8_t* src, std::vector<T>& dst, size_t count) {
 
 }  // namespace
 
-GBufferReadback::GBufferReadback(const GBufferPass& pass) : pass_(pass) {
+GBufferReadback::GBufferReadback(const GBufferPass& pass, GBufferRead what) : pass_(pass) {
   using T = GBufferTarget;
-  targets_ = {{pass.texture(T::Visibility), GL_RGBA_INTEGER, GL_UNSIGNED_INT, 16},
-              {pass.texture(T::Normal), GL_RGBA, GL_FLOAT, 16},
-              {pass.texture(T::BaseColor), GL_RGBA, GL_FLOAT, 16},
-              {pass.texture(T::Material), GL_RGBA, GL_FLOAT, 16},
-              {pass.texture(T::Emission), GL_RGBA, GL_FLOAT, 16},
-              {pass.texture(T::Motion), GL_RG, GL_FLOAT, 8},
-              {pass.depthTexture(), GL_DEPTH_COMPONENT, GL_FLOAT, 4}};
+  targets_ = {{pass.texture(T::Visibility), GL_RGBA_INTEGER, GL_UNSIGNED_INT, 16}};
+  if (what == GBufferRead::All)
+    targets_.insert(targets_.end(), {{pass.texture(T::Normal), GL_RGBA, GL_FLOAT, 16},
+                                     {pass.texture(T::BaseColor), GL_RGBA, GL_FLOAT, 16},
+                                     {pass.texture(T::Material), GL_RGBA, GL_FLOAT, 16},
+                                     {pass.texture(T::Emission), GL_RGBA, GL_FLOAT, 16},
+                                     {pass.texture(T::Motion), GL_RG, GL_FLOAT, 8},
+                                     {pass.depthTexture(), GL_DEPTH_COMPONENT, GL_FLOAT, 4}});
   const size_t pixels = size_t(pass.width()) * pass.height();
   buffers_.resize(targets_.size());
   api::CreateBuffers(GLsizei(buffers_.size()), buffers_.data());
@@ -70,6 +71,10 @@ void GBufferReadback::finish(std::array<GBufferImage, 2>& out) {
     g.height = h;
     auto at = [&](size_t t) { return maps[t] + size_t(e) * n * targets_[t].pixelBytes; };
     copyOut(at(0), g.visibility, n);
+    if (targets_.size() == 1) {
+      g.clearAllButVisibility();
+      continue;
+    }
     copyOut(at(1), g.normal, n);
     copyOut(at(2), g.baseColor, n);
     copyOut(at(3), g.material, n);

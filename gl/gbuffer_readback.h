@@ -13,7 +13,7 @@ namespace photovr::gl {
 
 class GBufferReadback {
  public:
-  explicit GBufferReadback(const GBufferPass& pass);
+  explicit GBufferReadback(const GBufferPass& pass, GBufferRead what = GBufferRead::All);
   ~GBufferReadback();
   GBufferReadback(const GBufferReadback&) = delete;
   GBufferReadback& operator=(const GBufferReadback&) = delete;
@@ -29,7 +29,7 @@ class GBufferReadback {
     size_t pixelBytes;
   };
   const GBufferPass& pass_;
-  std::vector<Target> targets_;
+  std::vector<Target> targets_;    // in GBufferTarget order, the depth last; or visibility alone
   std::vector<unsigned> buffers_;  // one PBO per target holding both layers
   void* fence_ = nullptr;
   int eyeCount_ = 0;

@@ -90,9 +90,9 @@ GlLimit measureGlLimits(int w, int h) {
   });
   std::array<gl::GBufferImage, 2> images;  // reused, as the renderers do
   g.readbackMs = bestMs(6, [&] {
-    for (int e = 0; e < 2; ++e) pass.read(e, images[e]);
+    for (int e = 0; e < 2; ++e) pass.read(e, images[e], gl::GBufferRead::Visibility);
   });
-  gl::GBufferReadback pbo(pass);
+  gl::GBufferReadback pbo(pass, gl::GBufferRead::Visibility);
   g.pboReadbackMs = bestMs(6, [&] {
     pbo.start(2);
     pbo.finish(images);

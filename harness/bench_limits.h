@@ -25,8 +25,9 @@ std::array<TraceLimit, 2> measureTraceLimits(const BenchScene& scene, int width,
 
 struct GlLimit {
   int width = 0, height = 0;
-  double emptyFrameMs = 0;   // G-buffer pass of an empty scene, both eyes, to glFinish
-  double readbackMs = 0;     // synchronous read-back of both eyes' layers alone
+  double emptyFrameMs = 0;  // G-buffer pass of an empty scene, both eyes, to glFinish
+  // The read-back alone of what a hybrid frame reads: both eyes' visibility records.
+  double readbackMs = 0;     // synchronous
   double pboReadbackMs = 0;  // the same through pixel buffer objects (start + finish)
 };
 

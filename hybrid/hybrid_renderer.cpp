@@ -62,7 +62,7 @@ void HybridRenderer::readGBuffer(int eyeCount, std::array<gl::GBufferImage, 2>& 
   const auto t0 = Clock::now();
   pass_.finish();
   const auto t1 = Clock::now();
-  for (int e = 0; e < eyeCount; ++e) pass_.read(e, into[e]);
+  for (int e = 0; e < eyeCount; ++e) pass_.read(e, into[e], gl::GBufferRead::Visibility);
   t.gbufferMs = msBetween(t0, t1);
   t.readbackMs = msSince(t1);
 }
@@ -128,7 +128,8 @@ void HybridRenderer::renderSequence(const CameraFn& cameras, int frames, int eye
     }
   } else {
     // Stage times overlap here; gbufferMs counts only the time the CPU waited for GL.
-    gl::GBufferReadback readback[2] = {gl::GBufferReadback(pass_), gl::GBufferReadback(pass_)};
+    gl::GBufferReadback readback[2] = {gl::GBufferReadback(pass_, gl::GBufferRead::Visibility),
+                                       gl::GBufferReadback(pass_, gl::GBufferRead::Visibility)};
     std::array<EyeCamera, 2> current = cameras(0);
     drawGBuffer(current);
     readback[0].start(eyeCount);

@@ -58,8 +58,9 @@ class HybridRenderer {
                                  FrameTimes* times, const StereoSampleMaps& samples = {});
 
   // The same in stages, for a caller that traces on another thread (FramePipeline's
-  // background worker): GL thread: drawGBuffer, then readGBuffer into 'into' (its storage
-  // reused); any thread: trace, with the given settings (spp, bounces, seed, sampler; the
+  // background worker): GL thread: drawGBuffer, then readGBuffer into 'into' (the
+  // visibility records alone, all the tracer reads: gl::GBufferRead; storage reused); any
+  // thread: trace, with the given settings (spp, bounces, seed, sampler; the
   // skips stay the constructor's).
   void drawGBuffer(const std::array<EyeCamera, 2>& eyes);
   void readGBuffer(int eyeCount, std::array<gl::GBufferImage, 2>& into, FrameTimes& t);

@@ -8,6 +8,7 @@
 
 #include "core/visibility.h"
 #include "gl/draw_stats.h"
+#include "gl/gbuffer_readback.h"
 #include "tests/gl/gl_test_util.h"
 
 namespace photovr {
@@ -155,6 +156,39 @@ TEST(GBuffer, NormalsBaseColourAndMaterialComeBackAsWritten) {
       ASSERT_NEAR(m.y, 0.75f, kHalfRel * 0.75f);       // roughness
       ASSERT_EQ(r.eye[e].motion[i], glm::vec2(0.0f));  // static scene, static camera
     }
+}
+
+// The hybrid frame reads back the visibility records alone (all its tracer reads): they
+// must be the full read's, bit for bit, through both read paths, and the other targets
+// empty, so that nothing can read a stale one.
+TEST(GBuffer, VisibilityReadBackIsTheFullReadsRecordsAndNothingElse) {
+  osmesaContext();
+  const Scene scene = wallScene(2.0f);
+  gl::SceneGpu gpu(scene);
+  const auto eyes = stereoEyes(24, 20);
+  gl::GBufferPass pass(24, 20);
+  pass.render(gpu, eyes,
+              {eyes[0].unjitteredProjection() * eyes[0].view(),
+               eyes[1].unjitteredProjection() * eyes[1].view()});
+  std::array<gl::GBufferImage, 2> full, sync, pbo;
+  gl::GBufferReadback all(pass), visibility(pass, gl::GBufferRead::Visibility);
+  all.start(2);
+  all.finish(full);
+  visibility.start(2);
+  visibility.finish(pbo);
+  for (int e = 0; e < 2; ++e) {
+    sync[e] = full[e];  // storage with every target filled, as a reused image has
+    pass.read(e, sync[e], gl::GBufferRead::Visibility);
+    ASSERT_EQ(full[e].visibility.size(), size_t(24 * 20));
+    ASSERT_NE(full[e].normal.size(), 0u);
+    for (const gl::GBufferImage* g : {&sync[e], &pbo[e]}) {
+      EXPECT_EQ(g->width, 24);
+      EXPECT_EQ(g->height, 20);
+      EXPECT_EQ(g->visibility, full[e].visibility);
+      EXPECT_TRUE(g->normal.empty() && g->baseColor.empty() && g->material.empty() &&
+                  g->emission.empty() && g->motion.empty() && g->depth.empty());
+    }
+  }
 }
 
 TEST(GBuffer, OneDrawCallPerMeshCoversBothEyesAndAllInstances) {
