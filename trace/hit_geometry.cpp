@@ -39,11 +39,13 @@ template <typename T>
 struct Corners {
   V3<T> m0, m1, m2, m3;  // the instance transform's columns (its w row is 0 0 0 1)
   V3<T> p0, p1, p2;      // the triangle's object-space vertices
+  V3<T> n0, n1, n2;      // ... and their normals (zero where the mesh has none)
 };
 template <typename T>
 struct Result {
   V3<T> position, ng;
   T error;
+  V3<T> normal;  // the interpolated vertex normal in world space, unit (ng where none)
 };
 
 template <typename T>
@@ -78,9 +80,48 @@ template <typename T>
   return r;
 }
 
+// v / |v|, or 'fallback' where |v| is 0 or not finite (surfaceAt's safeNormalize, which
+// computed the interpolated normal before this stage: glm::length is sqrt(dot(v, v)), and
+// v / len divides each component).
+template <typename T>
+[[gnu::always_inline]] inline V3<T> unitOr(const V3<T>& v, const V3<T>& fallback) {
+  const T len = sqrtOf(dot(v, v));
+  const auto ok = (len > 0.0f) & (len <= FLT_MAX);
+  return {select(ok, v.x / len, fallback.x), select(ok, v.y / len, fallback.y),
+          select(ok, v.z / len, fallback.z)};
+}
+
+// The vertex normals interpolated at (b1, b2) and taken to world space, unit; the unit
+// geometric normal 'ng' where that vanishes (no normals, or normals cancelling out). As
+// surfaceAt computed it with glm: b0 * n0 + b1 * n1 + b2 * n2 with b0 = 1 - b1 - b2, then
+// the transform's cofactor matrix (the inverse transpose up to a positive scale: cross
+// products of its columns, negated where its determinant is negative) times it.
+template <typename T>
+[[gnu::always_inline]] inline V3<T> interpolatedNormalOf(const Corners<T>& c, const T& b1,
+                                                         const T& b2, const V3<T>& ng) {
+  const T b0 = (1.0f - b1) - b2;
+  const auto lerp = [&](const T& a0, const T& a1, const T& a2) {
+    return (b0 * a0 + b1 * a1) + b2 * a2;
+  };
+  const V3<T> n = {lerp(c.n0.x, c.n1.x, c.n2.x), lerp(c.n0.y, c.n1.y, c.n2.y),
+                   lerp(c.n0.z, c.n1.z, c.n2.z)};
+  V3<T> c0 = cross(c.m1, c.m2), c1 = cross(c.m2, c.m0), c2 = cross(c.m0, c.m1);
+  const auto flip = dot(c.m0, c0) < 0.0f;
+  const auto signed_ = [&](V3<T>& v) {
+    v = {select(flip, -v.x, v.x), select(flip, -v.y, v.y), select(flip, -v.z, v.z)};
+  };
+  signed_(c0), signed_(c1), signed_(c2);
+  const auto row = [&](const T& x, const T& y, const T& z) {
+    return (x * n.x + y * n.y) + z * n.z;
+  };
+  return unitOr(V3<T>{row(c0.x, c1.x, c2.x), row(c0.y, c1.y, c2.y), row(c0.z, c1.z, c2.z)}, ng);
+}
+
 template <typename T>
 [[gnu::always_inline]] inline Result<T> geometryOf(const Corners<T>& c, const T& b1, const T& b2) {
-  return geometryOf(toWorld(c, c.p0), toWorld(c, c.p1), toWorld(c, c.p2), b1, b2);
+  Result<T> r = geometryOf(toWorld(c, c.p0), toWorld(c, c.p1), toWorld(c, c.p2), b1, b2);
+  r.normal = interpolatedNormalOf(c, b1, b2, r.ng);
+  return r;
 }
 
 template <typename T>
@@ -119,6 +160,7 @@ template <typename T>
   r.b1 = select(over, u / sum, u);
   r.b2 = select(over, v / sum, v);
   r.geometry = geometryOf(p0, p1, p2, r.b1, r.b2);
+  r.geometry.normal = interpolatedNormalOf(c, r.b1, r.b2, r.geometry.ng);
   r.t = dot(minus(r.geometry.position, origin), dir);
   return r;
 }
@@ -127,33 +169,49 @@ V3<float> v3(const glm::vec3& v) {
   return {v.x, v.y, v.z};
 }
 
-// What surfaceAt reads of a triangle's corners besides their positions (normals and the
-// first texture coordinates), asked for while the gather loads the positions: surfaceAt runs
-// after the whole batch's geometry, by when they have arrived. Its first read of a normal was
-// a sixth of surfaceAt's time, a miss to L3 at every new triangle (perf annotate, spheres).
-// A mesh built in code may lack either attribute (surfaceAt reads it as zero then).
-void prefetchShadingCorners(const Mesh& mesh, const uint32_t* idx) {
+// The gather reads each hit's triangle indices, then its corners: each a miss to L3 at
+// every new triangle. They are asked for ahead, in two steps: the indices kIndexLookahead
+// hits ahead, the corners (positions and normals, which the gather reads, and the first
+// texture coordinates, which surfaceAt reads after the batch) half as far ahead, from the
+// indices asked for before. The first read of a vertex normal in surfaceAt had been a sixth
+// of its time (perf annotate, spheres). A mesh built in code may lack normals or texture
+// coordinates.
+constexpr size_t kIndexLookahead = 16, kCornerLookahead = 8;
+
+const Mesh& meshOf(const Scene& scene, const HitRef& hit) {
+  return scene.meshes[size_t(scene.instances[hit.instance].mesh)];
+}
+
+void prefetchIndices(const Scene& scene, const HitRef& hit) {
+  __builtin_prefetch(&meshOf(scene, hit).indices[3 * size_t(hit.triangle)]);
+}
+
+void prefetchCorners(const Scene& scene, const HitRef& hit) {
+  const Mesh& mesh = meshOf(scene, hit);
+  const uint32_t* idx = &mesh.indices[3 * size_t(hit.triangle)];
   const bool normals = !mesh.normals.empty(), uvs = !mesh.uv0.empty();
   for (int k = 0; k < 3; ++k) {
+    __builtin_prefetch(mesh.positions.data() + idx[k]);
     if (normals) __builtin_prefetch(mesh.normals.data() + idx[k]);
     if (uvs) __builtin_prefetch(mesh.uv0.data() + idx[k]);
   }
 }
 
-// A hit's triangle indices, asked for some hits ahead of the gather that reads them.
-void prefetchIndices(const Scene& scene, const HitRef& hit) {
-  const Mesh& mesh = scene.meshes[size_t(scene.instances[hit.instance].mesh)];
-  __builtin_prefetch(&mesh.indices[3 * size_t(hit.triangle)]);
+// Both prefetches for the hit 'i' of 'count' will gather in some hits' time.
+template <typename HitAt>
+void prefetchAhead(const Scene& scene, size_t i, size_t count, const HitAt& hitAt) {
+  if (i + kIndexLookahead < count) prefetchIndices(scene, hitAt(i + kIndexLookahead));
+  if (i + kCornerLookahead < count) prefetchCorners(scene, hitAt(i + kCornerLookahead));
 }
 
-// How many hits ahead prefetchIndices asks: a miss's latency over one gather's work.
-constexpr size_t kIndexLookahead = 8;
+V3<float> normalOrZero(const Mesh& mesh, uint32_t index) {
+  return mesh.normals.empty() ? V3<float>{0.0f, 0.0f, 0.0f} : v3(mesh.normals[index]);
+}
 
 Corners<float> cornersOf(const Scene& scene, const HitRef& hit) {
   const Instance& inst = scene.instances[hit.instance];
   const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
   const uint32_t* idx = &mesh.indices[3 * size_t(hit.triangle)];
-  prefetchShadingCorners(mesh, idx);
   const glm::mat4& m = inst.transform;
   return {v3(m[0]),
           v3(m[1]),
@@ -161,11 +219,18 @@ Corners<float> cornersOf(const Scene& scene, const HitRef& hit) {
           v3(m[3]),
           v3(mesh.positions[idx[0]]),
           v3(mesh.positions[idx[1]]),
-          v3(mesh.positions[idx[2]])};
+          v3(mesh.positions[idx[2]]),
+          normalOrZero(mesh, idx[0]),
+          normalOrZero(mesh, idx[1]),
+          normalOrZero(mesh, idx[2])};
+}
+
+glm::vec3 toGlm(const V3<float>& v) {
+  return {v.x, v.y, v.z};
 }
 
 HitGeometry toHitGeometry(const Result<float>& r) {
-  return {{r.position.x, r.position.y, r.position.z}, r.error, {r.ng.x, r.ng.y, r.ng.z}};
+  return {toGlm(r.position), r.error, toGlm(r.ng), toGlm(r.normal)};
 }
 
 // Lane k of eight hits' corners, barycentrics and results, as vectors.
@@ -175,8 +240,9 @@ struct alignas(32) Lanes8 {  // 32: F8 is only 16-aligned where AVX is off, but 
   F8 b1, b2;
   Result<F8> result;
 };
-static_assert(sizeof(Corners<float>) == 21 * sizeof(float));
-static_assert(sizeof(Corners<F8>) == 21 * sizeof(F8));
+constexpr size_t kCornerFloats = 30;
+static_assert(sizeof(Corners<float>) == kCornerFloats * sizeof(float));
+static_assert(sizeof(Corners<F8>) == kCornerFloats * sizeof(F8));
 static_assert(alignof(Lanes8) == 32);
 
 __attribute__((target_clones("avx2", "default"))) void geometryLanes(Lanes8* lanes, size_t count) {
@@ -200,18 +266,20 @@ __attribute__((target_clones("avx2", "default"))) void namedHitLanes(NamedLanes8
   }
 }
 
-HitGeometry toHitGeometry(const Result<F8>& r, size_t k) {
-  return {{r.position.x[k], r.position.y[k], r.position.z[k]},
-          r.error[k],
-          {r.ng.x[k], r.ng.y[k], r.ng.z[k]}};
+glm::vec3 laneOf(const V3<F8>& v, size_t k) {
+  return {v.x[k], v.y[k], v.z[k]};
 }
 
-// Writes lane i % 8 of group i / 8 of 'lanes' (21 floats per lane, in Corners' order).
+HitGeometry toHitGeometry(const Result<F8>& r, size_t k) {
+  return {laneOf(r.position, k), r.error[k], laneOf(r.ng, k), laneOf(r.normal, k)};
+}
+
+// Writes lane k of 'lanes' (kCornerFloats floats per lane, in Corners' order).
 template <typename Lanes>
 void setCorners(Lanes& lanes, size_t k, const Corners<float>& c) {
   const float* from = &c.m0.x;
   float* to = &lanes.corners.m0.x[0];
-  for (size_t j = 0; j < 21; ++j) to[8 * j + k] = from[j];
+  for (size_t j = 0; j < kCornerFloats; ++j) to[8 * j + k] = from[j];
 }
 
 }  // namespace
@@ -221,7 +289,9 @@ HitGeometry hitGeometry(const Scene& scene, const HitRef& hit) {
 }
 
 HitGeometry hitGeometry(const WorldTriangle& tri, float b1, float b2) {
-  return toHitGeometry(geometryOf(v3(tri.p0), v3(tri.p1), v3(tri.p2), b1, b2));
+  Result<float> r = geometryOf(v3(tri.p0), v3(tri.p1), v3(tri.p2), b1, b2);
+  r.normal = r.ng;  // no vertex normals
+  return toHitGeometry(r);
 }
 
 void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<HitGeometry> out) {
@@ -232,7 +302,7 @@ void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<H
   for (size_t i = 0; i < groups * 8; ++i) {
     // Lanes past the end repeat the last hit (their results are dropped).
     const HitRef& hit = hits[std::min(i, n - 1)];
-    if (i + kIndexLookahead < n) prefetchIndices(scene, hits[i + kIndexLookahead]);
+    prefetchAhead(scene, i, n, [&](size_t j) -> const HitRef& { return hits[j]; });
     Lanes8& l = lanes[i / 8];
     setCorners(l, i % 8, cornersOf(scene, hit));
     l.b1[i % 8] = hit.b1;
@@ -257,7 +327,7 @@ void namedHits(const Scene& scene, const glm::vec3& origin, std::span<const Name
   lanes.resize(groups);
   for (size_t i = 0; i < groups * 8; ++i) {
     const NamedRay& ray = rays[std::min(i, n - 1)];  // as in hitGeometries
-    if (i + kIndexLookahead < n) prefetchIndices(scene, rays[i + kIndexLookahead].hit);
+    prefetchAhead(scene, i, n, [&](size_t j) -> const HitRef& { return rays[j].hit; });
     NamedLanes8& l = lanes[i / 8];
     const size_t k = i % 8;
     setCorners(l, k, cornersOf(scene, ray.hit));

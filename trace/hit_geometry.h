@@ -27,12 +27,15 @@ struct HitGeometry {
   glm::vec3 position{0.0f};    // world
   float positionError = 0.0f;  // bound on |position - exact|
   glm::vec3 ng{0.0f};  // unit normal of the counter-clockwise side; +Y for a degenerate triangle
+  // The vertex normals interpolated and taken to world space, unit, before any normal map;
+  // ng where the mesh has none or they cancel out. Either side of the surface (surfaceAt
+  // turns it to the viewer's).
+  glm::vec3 normal{0.0f};
 };
 
 HitGeometry hitGeometry(const Scene& scene, const HitRef& hit);
-// The same from the hit triangle's world-space corners, where the caller has them
-// (worldTriangle transforms the corners as hitGeometry does, bit for bit): the hybrid's
-// primary hits, whose triangle is intersected first.
+// The same from the hit triangle's world-space corners (worldTriangle transforms the
+// corners as hitGeometry does, bit for bit), which have no vertex normals: 'normal' is ng.
 HitGeometry hitGeometry(const WorldTriangle& triangle, float b1, float b2);
 
 // hitGeometry for every hit: out[i] for hits[i]; out.size() == hits.size().

@@ -9,8 +9,9 @@
 namespace photovr {
 namespace {
 
+// The vertex attributes at a hit besides its normal (HitGeometry::normal, from the
+// geometry stage's lanes).
 struct Interpolated {
-  glm::vec3 normal{0.0f};
   glm::vec4 tangent{0.0f};
   glm::vec2 uv0{0.0f}, uv1{0.0f};
 };
@@ -28,7 +29,6 @@ T attributeAt(const std::vector<T>& a, const uint32_t* idx, float b1, float b2) 
 
 Interpolated interpolate(const Mesh& m, const uint32_t* idx, float b1, float b2) {
   Interpolated r;
-  r.normal = attributeAt(m.normals, idx, b1, b2);
   r.tangent = attributeAt(m.tangents, idx, b1, b2);
   r.uv0 = attributeAt(m.uv0, idx, b1, b2);
   r.uv1 = attributeAt(m.uv1, idx, b1, b2);
@@ -44,19 +44,6 @@ glm::vec3 emission(const Scene& scene, const Material& mat, glm::vec2 uv0, glm::
            glm::vec3(sampleSlot(scene, mat.baseColorTexture, uv0, uv1, true, glm::vec4(1.0f)));
   return mat.emission() *
          glm::vec3(sampleSlot(scene, mat.emissiveTexture, uv0, uv1, true, glm::vec4(1.0f)));
-}
-
-// An object-space normal in world space up to a positive scale (it is normalised after):
-// the inverse transpose of m's upper 3x3 up to its scale is the cofactor matrix, whose
-// columns are cross products of the transform's columns, times the determinant's sign
-// (what glm::inverse computes before its division and transpose). Written on columns, in
-// glm's mat3 * vec3 order, with no glm::mat3 built: its copy through the stack stalled
-// store forwarding for a tenth of surfaceAt's time.
-glm::vec3 normalToWorld(const glm::mat4& m, const glm::vec3& n) {
-  const glm::vec3 a0(m[0]), a1(m[1]), a2(m[2]);
-  glm::vec3 c0 = glm::cross(a1, a2), c1 = glm::cross(a2, a0), c2 = glm::cross(a0, a1);
-  if (glm::dot(a0, c0) < 0.0f) c0 = -c0, c1 = -c1, c2 = -c2;
-  return c0 * n.x + c1 * n.y + c2 * n.z;
 }
 
 glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
@@ -172,7 +159,7 @@ SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g
   const uint32_t* idx = &mesh.indices[3 * size_t(ref.triangle)];
   const glm::mat4& m = inst.transform;
   const Interpolated in = interpolate(mesh, idx, ref.b1, ref.b2);
-  const glm::vec3 interpolated = safeNormalize(normalToWorld(m, in.normal), g.ng);
+  const glm::vec3& interpolated = g.normal;
   // Only where there is a map: the call alone, to return 'interpolated', was 2 % of
   // cornell's tracer (its result waited on through the stack frame's teardown).
   glm::vec3 ns = mat.normalTexture.valid() ? applyNormalMap(scene, mat.normalTexture,

@@ -16,6 +16,26 @@
 namespace photovr {
 namespace {
 
+glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
+  const float len = glm::length(v);
+  return len > 0.0f && std::isfinite(len) ? v / len : fallback;
+}
+
+// surfaceAt's interpolated shading normal as it was written with glm (commit e8471fc), the
+// reference: the vertex normals interpolated, times the transform's cofactor matrix.
+glm::vec3 glmInterpolatedNormal(const Mesh& mesh, const uint32_t* idx, const glm::mat4& m,
+                                const HitRef& hit, const glm::vec3& ng) {
+  glm::vec3 n(0.0f);
+  if (!mesh.normals.empty()) {
+    const float b0 = 1.0f - hit.b1 - hit.b2;
+    n = b0 * mesh.normals[idx[0]] + hit.b1 * mesh.normals[idx[1]] + hit.b2 * mesh.normals[idx[2]];
+  }
+  const glm::vec3 a0(m[0]), a1(m[1]), a2(m[2]);
+  glm::vec3 c0 = glm::cross(a1, a2), c1 = glm::cross(a2, a0), c2 = glm::cross(a0, a1);
+  if (glm::dot(a0, c0) < 0.0f) c0 = -c0, c1 = -c1, c2 = -c2;
+  return safeNormalize(c0 * n.x + c1 * n.y + c2 * n.z, ng);
+}
+
 // surfaceAt's geometry as it was written with glm (commit 88ad6c7), the reference.
 HitGeometry glmGeometry(const Scene& scene, const HitRef& hit) {
   const Instance& inst = scene.instances[hit.instance];
@@ -32,11 +52,20 @@ HitGeometry glmGeometry(const Scene& scene, const HitRef& hit) {
   const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
   const float len = glm::length(n);
   g.ng = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
+  g.normal = glmInterpolatedNormal(mesh, idx, m, hit, g.ng);
   return g;
 }
 
 // Every float compared as bits: the stage may not change a single rounding.
 void expectSameBits(const HitGeometry& a, const HitGeometry& b, size_t i) {
+  EXPECT_EQ(a.position, b.position) << i;
+  EXPECT_EQ(a.positionError, b.positionError) << i;
+  EXPECT_EQ(a.ng, b.ng) << i;
+  EXPECT_EQ(a.normal, b.normal) << i;
+}
+
+// The same for all but the vertex normal: hitGeometry from a world triangle has none.
+void expectSameShape(const HitGeometry& a, const HitGeometry& b, size_t i) {
   EXPECT_EQ(a.position, b.position) << i;
   EXPECT_EQ(a.positionError, b.positionError) << i;
   EXPECT_EQ(a.ng, b.ng) << i;
@@ -70,26 +99,37 @@ TEST(HitGeometry, BatchEqualsOneByOneAndTheGlmFormBitForBit) {
       expectSameBits(batch[i], one, i);
       expectSameBits(one, glmGeometry(scene, hits[i]), i);
       const HitRef& h = hits[i];
-      expectSameBits(hitGeometry(worldTriangle(scene, h.instance, h.triangle), h.b1, h.b2), one, i);
+      const HitGeometry fromCorners =
+          hitGeometry(worldTriangle(scene, h.instance, h.triangle), h.b1, h.b2);
+      expectSameShape(fromCorners, one, i);
+      EXPECT_EQ(fromCorners.normal, fromCorners.ng) << i;
     }
   }
 }
 
-// Far from the origin, scaled and sheared, and a degenerate triangle (its normal is +Y).
+// Far from the origin, scaled and sheared, mirrored, and a degenerate triangle (its normal
+// is +Y); a mesh with vertex normals, one of them zero and two opposite (at b1 = 0.5,
+// b2 = 0.25 the second triangle's cancel out: ng), and the same without normals (ng).
 TEST(HitGeometry, FarScaledAndDegenerateTrianglesAgreeToo) {
   Scene scene;
   Mesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0.3f, 0}, {0.2f, 1, 0.7f}, {2, 2, 2}, {4, 4, 4}};
   mesh.indices = {0, 1, 2, 3, 4, 3, 0, 3, 4};  // the last two are degenerate (collinear)
   scene.meshes.push_back(mesh);
+  mesh.normals = {{0, 0, 1}, {0.6f, 0, 0.8f}, {0, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  scene.meshes.push_back(mesh);
   const glm::mat4 far = glm::mat4(glm::vec4(3e3f, 1.0f, 0, 0), glm::vec4(0, 2e-3f, 0.5f, 0),
                                   glm::vec4(0.1f, 0, 7.0f, 0), glm::vec4(1e7f, -3e6f, 2e5f, 1));
-  scene.instances.push_back({0, glm::mat4(1.0f), glm::mat4(1.0f), "near"});
-  scene.instances.push_back({0, far, far, "far"});
+  const glm::mat4 mirror = glm::scale(glm::mat4(1.0f), glm::vec3(-2.0f, 1.0f, 0.5f));
+  for (int m = 0; m < 2; ++m) {
+    scene.instances.push_back({m, glm::mat4(1.0f), glm::mat4(1.0f), "near"});
+    scene.instances.push_back({m, far, far, "far"});
+    scene.instances.push_back({m, mirror, mirror, "mirrored"});
+  }
   std::vector<HitRef> hits;
-  for (uint32_t instance = 0; instance < 2; ++instance)
+  for (uint32_t instance = 0; instance < 6; ++instance)
     for (uint32_t triangle = 0; triangle < 3; ++triangle) {
-      for (float b : {0.0f, 0.1f, 0.45f}) hits.push_back({instance, triangle, b, 0.5f * b});
+      for (float b : {0.0f, 0.1f, 0.45f, 0.5f}) hits.push_back({instance, triangle, b, 0.5f * b});
     }
   std::vector<HitGeometry> batch(hits.size());
   hitGeometries(scene, hits, batch);
