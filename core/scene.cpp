@@ -24,6 +24,12 @@ bool Material::isEmissive() const {
   return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
 }
 
+bool Material::textured() const {
+  for (const TextureRef* slot : textureSlots())
+    if (slot->valid()) return true;
+  return false;
+}
+
 float Material::iorF0() const {
   const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
   return float(r * r);

@@ -4,6 +4,7 @@
 // metres, linear scene-referred radiance in float.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -104,6 +105,16 @@ struct Material {
 
   glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
   bool isEmissive() const;
+  // Every texture slot, set or not.
+  std::array<const TextureRef*, 13> textureSlots() const {
+    return {&baseColorTexture,      &metallicRoughnessTexture, &normalTexture,
+            &occlusionTexture,      &emissiveTexture,          &specularTexture,
+            &specularColorTexture,  &transmissionTexture,      &sheenColorTexture,
+            &sheenRoughnessTexture, &clearcoatTexture,         &clearcoatRoughnessTexture,
+            &clearcoatNormalTexture};
+  }
+  // Whether any slot is set: only then does a hit need its texture coordinates and tangent.
+  bool textured() const;
   // ((ior - 1) / (ior + 1))^2, the dielectric's reflectance at normal incidence from air;
   // computed in double so the default ior gives exactly the float nearest 0.04.
   float iorF0() const;

@@ -21,11 +21,7 @@ static void hashMaterial(Hasher& h, const Material& m) {
   h.value(m.attenuationDistance).value(m.unlit);
   h.value(m.sheenColorFactor).value(m.sheenRoughnessFactor);
   h.value(m.clearcoatFactor).value(m.clearcoatRoughnessFactor).value(m.clearcoatNormalScale);
-  for (const TextureRef* r :
-       {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-        &m.emissiveTexture, &m.specularTexture, &m.specularColorTexture, &m.transmissionTexture,
-        &m.sheenColorTexture, &m.sheenRoughnessTexture, &m.clearcoatTexture,
-        &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture})
+  for (const TextureRef* r : m.textureSlots())
     h.value(r->texture)
         .value(r->texCoord)
         .value(r->transform.offset)

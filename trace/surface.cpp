@@ -158,7 +158,9 @@ SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g
   const Material& mat = scene.materials[mesh.material];
   const uint32_t* idx = &mesh.indices[3 * size_t(ref.triangle)];
   const glm::mat4& m = inst.transform;
-  const Interpolated in = interpolate(mesh, idx, ref.b1, ref.b2);
+  // Texture coordinates and tangents only where a texture reads them: interpolating the
+  // first set was a third of surfaceAt's time on spheres, which has no texture.
+  const Interpolated in = mat.textured() ? interpolate(mesh, idx, ref.b1, ref.b2) : Interpolated{};
   const glm::vec3& interpolated = g.normal;
   // Only where there is a map: the call alone, to return 'interpolated', was 2 % of
   // cornell's tracer (its result waited on through the stack frame's teardown).
