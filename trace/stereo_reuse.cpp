@@ -82,12 +82,12 @@ float ReuseSplit::leftPdf(const glm::vec3& w) const {
 
 namespace {
 
-// Left sample 'sample' of pixel (x, y), inside the left image, if it was recorded this frame and is
-// the same surface point as the right hit for the shift: same instance, normals within
+// Left sample 'sample' of pixel 'pixel', inside the left image, if it was recorded this frame and
+// is the same surface point as the right hit for the shift: same instance, normals within
 // kPartnerNormalCos, within 'maxDistance2' (squared) of it.
-const FirstBounce* partnerAt(const StereoPaths& left, int x, int y, uint32_t sample,
+const FirstBounce* partnerAt(const StereoPaths& left, uint32_t pixel, uint32_t sample,
                              const SurfaceHit& hit, float maxDistance2) {
-  const size_t slot = (size_t(y) * size_t(left.camera.width) + size_t(x)) * left.stride + sample;
+  const size_t slot = size_t(pixel) * left.stride + sample;
   if (left.stamps[slot] != left.generation) return nullptr;  // no left path this frame
   const FirstBounce& b = left.bounces[slot];
   if (b.instance != hit.instance) return nullptr;  // another object
@@ -125,48 +125,59 @@ bool leftWindowPoint(const EyeWindow& left, const SurfaceHit& hit, const RightSa
   return true;
 }
 
-// The left pixel (x, y) that stands for the right sample at 'hit', and the left footprint
-// there squared; false: none (glass, a sample the left does not record, behind the left eye,
-// outside its image).
-bool standingPixel(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right, int& x,
-                   int& y, float& footprint2) {
-  if (right.sample >= left.stride) return false;
+}  // namespace
+
+// The left pixel that stands for the right sample at 'hit', and the left footprint there
+// squared; none: glass, behind the left eye, outside its image.
+StandingPixel standingPixelOf(const EyeWindow& left, const SurfaceHit& hit,
+                              const RightSample& right) {
+  StandingPixel s;
   // Glass: reuseBounce shifts reflections only, and what is seen through glass moves
   // between the eyes by its own parallax, not the glass surface's.
-  if (hit.bsdf.transmission > 0.0f) return false;
+  if (hit.bsdf.transmission > 0.0f) return s;
   const glm::vec3 offset = hit.position - left.camera.pose.position;
   // The footprint squared: (pixel angle x distance)^2, no square root.
-  footprint2 = left.pixelAngle * left.pixelAngle * glm::dot(offset, offset);
+  const float footprint2 = left.pixelAngle * left.pixelAngle * glm::dot(offset, offset);
   glm::vec2 window;
-  if (!leftWindowPoint(left, hit, right, footprint2, window)) return false;
+  if (!leftWindowPoint(left, hit, right, footprint2, window)) return s;
   const float px = window.x, py = window.y;
   if (!(px >= 0.0f && py >= 0.0f && px < float(left.camera.width) &&
         py < float(left.camera.height)))
-    return false;
-  x = int(px), y = int(py);
-  return true;
+    return s;
+  s.pixel = uint32_t(py) * uint32_t(left.camera.width) + uint32_t(px);
+  s.footprint2 = footprint2;
+  return s;
 }
 
-}  // namespace
+void prefetchPartner(const StereoPaths& left, const StandingPixel& standing) {
+  if (standing.pixel == kNoLeftPixel || left.stride == 0) return;
+  const size_t slot = size_t(standing.pixel) * left.stride;
+  __builtin_prefetch(&left.stamps[slot]);
+  __builtin_prefetch(&left.bounces[slot].position);
+  __builtin_prefetch(&left.bounces[slot].instance);
+}
 
-const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
-                               const RightSample& right, uint32_t* leftPixel) {
+const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& standing,
+                             uint32_t sample, const SurfaceHit& hit, uint32_t* leftPixel) {
   if (leftPixel) *leftPixel = kNoLeftPixel;
-  int x = 0, y = 0;
-  float footprint2 = 0.0f;
-  if (!standingPixel(left, hit, right, x, y, footprint2)) return nullptr;
-  if (leftPixel) *leftPixel = uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
+  // A sample the left does not record has neither a partner nor the left's numbers.
+  if (sample >= left.stride || standing.pixel == kNoLeftPixel) return nullptr;
+  if (leftPixel) *leftPixel = standing.pixel;
   // Where that sample is another surface (an edge, a thin object), none: a neighbour's
   // sample of this surface would give the right pixel another pixel's sequence in those
   // frames, and its own path draws this left pixel's numbers instead (ownPathCounters).
-  return partnerAt(left, x, y, right.sample, hit, kPartnerPixels * kPartnerPixels * footprint2);
+  return partnerAt(left, standing.pixel, sample, hit,
+                   kPartnerPixels * kPartnerPixels * standing.footprint2);
+}
+
+const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
+                               const RightSample& right, uint32_t* leftPixel) {
+  return partnerIn(left, standingPixelOf(left, hit, right), right.sample, hit, leftPixel);
 }
 
 uint32_t leftPixelOf(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right) {
-  int x = 0, y = 0;
-  float footprint2 = 0.0f;
-  if (!standingPixel(left, hit, right, x, y, footprint2)) return kNoLeftPixel;
-  return uint32_t(y) * uint32_t(left.camera.width) + uint32_t(x);
+  if (right.sample >= left.stride) return kNoLeftPixel;
+  return standingPixelOf(left, hit, right).pixel;
 }
 
 }  // namespace photovr

@@ -245,6 +245,24 @@ const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
 // findPartner's left pixel alone, in a window with no records (the right eye goes first).
 uint32_t leftPixelOf(const EyeWindow& left, const SurfaceHit& hit, const RightSample& right);
 
+// findPartner in two steps, for a caller that looks up many pixels' partners (the hybrid's
+// tiles): the left pixel that stands for a right sample at 'hit' and the left footprint
+// there, squared (the same for every sample of a right pixel but for RightSample::sample,
+// which the first step ignores), then the partner in that pixel's records. In between, the
+// caller can ask for the records ahead of reading them (prefetchPartner): the record's
+// first read was a fifth of findPartner's time, a miss at every pixel (perf annotate).
+// findPartner(left, hit, right, &leftPixel) is partnerIn(left, standingPixelOf(left, hit,
+// right), right.sample, hit, &leftPixel).
+struct StandingPixel {
+  uint32_t pixel = kNoLeftPixel;  // y * width + x in the left window; kNoLeftPixel: none
+  float footprint2 = 0.0f;
+};
+StandingPixel standingPixelOf(const EyeWindow& left, const SurfaceHit& hit,
+                              const RightSample& right);
+void prefetchPartner(const StereoPaths& left, const StandingPixel& standing);
+const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& standing,
+                             uint32_t sample, const SurfaceHit& hit, uint32_t* leftPixel = nullptr);
+
 // The numbers a right sample without a partner draws for its own path: the left eye's at
 // 'leftPixel' (findPartner's), whose sample a right sample of the same pixel reuses in
 // other frames, so that the right pixel keeps one Sobol sequence over the frames (at an
@@ -272,6 +290,26 @@ inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const Surf
     partner = findPartner(*role.reuse, hit, sample, right ? &leftPixel : nullptr);
   else if (right)
     leftPixel = leftPixelOf(*role.leftEye, hit, sample);
+  if (!partner && right) counters = ownPathCounters(counters, leftPixel);
+  return partner;
+}
+
+// The window a role's samples look into: the records it reuses, or the left eye's.
+inline const EyeWindow& windowOf(const StereoRole& role) {
+  return role.reuse ? *role.reuse : *role.leftEye;
+}
+
+// partnerOrOwnNumbers from the sample's standing pixel in windowOf(role) (standingPixelOf).
+inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const SurfaceHit& hit,
+                                              const StandingPixel& standing, uint32_t sample,
+                                              SampleCounters& counters) {
+  const bool right = role.leftEye != nullptr;
+  uint32_t leftPixel = kNoLeftPixel;
+  const FirstBounce* partner = nullptr;
+  if (role.reuse)
+    partner = partnerIn(*role.reuse, standing, sample, hit, right ? &leftPixel : nullptr);
+  else if (right && sample < role.leftEye->stride)
+    leftPixel = standing.pixel;
   if (!partner && right) counters = ownPathCounters(counters, leftPixel);
   return partner;
 }
