@@ -101,12 +101,19 @@ struct VertexShading {
   BsdfEval nee, reused;
   VertexRays rays;  // the head's shadow ray
   bool splitsHere = false;
+  // A reused right sample's split, where a batch answered it before the head (splitAnswers);
+  // else the head answers it itself.
+  bool splitAnswered = false;
+  SplitAnswers split;
 };
 void startVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                  PathResult& result, VertexShading& vs);
 void prepareVertex(const BsdfParams& params, VertexShading& vs);
 bool shadeVertexHead(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                      PathResult& result, ShadowRay& shadow, VertexShading& vs);
+// A reused right sample's split at its first vertex (path.reuse set; vs prepared): what
+// shadeVertexHead asks, and trace/split_lanes.h answers for a batch.
+SplitAnswers answerSplit(const PathState& path, const VertexShading& vs, const VertexNumbers& u);
 VertexRays shadeVertexTail(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                            PathResult& result, const VertexShading& vs, const BsdfSample& bs,
                            BatchRay& bounce);

@@ -174,14 +174,11 @@ void addSplit(PathResult& r, const glm::vec3& contribution, const glm::vec3& sha
 // this vertex's BSDF, and the emission it found MIS-weighted against this vertex's NEE;
 // only if the direction is the reused term's ('split'), else the right sample's own.
 void reuseBounce(const TraceContext& ctx, const PathState& p, const VertexShading& vs,
-                 const ReuseSplit& split, PathResult& result) {
+                 const SplitAnswers& split, PathResult& result) {
   const FirstBounce& b = *p.reuse;
-  if (!vs.reusing) return;  // the left path's bounce term was 0 (no valid sample, or rejected)
-  const glm::vec3& wi = b.dir;
-  if (glm::dot(wi, p.hit.geometricNormal) <= 0.0f) return;
+  if (!split.leftDirReused) return;
   const glm::vec3& wiL = vs.wiReused;
   const BsdfEval& e = vs.reused;
-  if (!split.reused(wi, e.pdf)) return;
   glm::vec3 incoming = b.beyond;
   if (b.emitted != glm::vec3(0.0f)) {
     const float lightPdf =
@@ -193,6 +190,29 @@ void reuseBounce(const TraceContext& ctx, const PathState& p, const VertexShadin
   result.diffuse += e.f.diffuse * scale;
   result.specular += e.f.specular * scale;
 }
+
+}  // namespace
+
+SplitAnswers answerSplit(const PathState& p, const VertexShading& vs, const VertexNumbers& u) {
+  const FirstBounce& b = *p.reuse;
+  const ReuseSplit split(b, p.hit, vs.bsdf, p.wo);
+  SplitAnswers a;
+  // Only where the left path's bounce term was not 0 (a valid sample, not rejected), and its
+  // direction leaves this vertex's side.
+  a.leftDirReused = vs.reusing && glm::dot(b.dir, p.hit.geometricNormal) > 0.0f &&
+                    split.reused(b.dir, vs.reused.pdf);
+  if (split.whole()) return a;
+  // A reused right sample traces its own bounce only where the reused term does not hold
+  // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
+  // BSDF's value only for a direction it keeps.
+  const BsdfSample bs = sampleBsdfDirection(vs.bsdf, u.bsdf);
+  if (!bs.valid()) return a;
+  const glm::vec3 wi = vs.frame.toWorld(bs.wi);
+  a.ownTraced = sameSide(wi, p.hit, bs.wi) && !split.reused(wi, bs.pdf);
+  return a;
+}
+
+namespace {
 
 glm::vec3 divideOrZero(const glm::vec3& a, const glm::vec3& b) {
   glm::vec3 q(0.0f);
@@ -277,6 +297,7 @@ void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, 
   vs.wo = vs.frame.toLocal(p.wo);
   sampleLight(ctx, p, u, vs);
   vs.reusing = p.reuse && p.reuse->sampled;
+  vs.splitAnswered = false;
   if (vs.reusing) vs.wiReused = vs.frame.toLocal(p.reuse->dir);
 }
 
@@ -288,7 +309,6 @@ void prepareVertex(const BsdfParams& params, VertexShading& vs) {
 
 bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
                      PathResult& result, ShadowRay& shadow, VertexShading& vs) {
-  const Frame& frame = vs.frame;
   const BsdfVertex& bsdf = vs.bsdf;
   if (p.depth == 0)
     result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
@@ -306,16 +326,9 @@ bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers&
     p.record->specularProbability = bsdf.specularProbability;
   }
   if (!p.reuse) return true;
-  const ReuseSplit split(*p.reuse, p.hit, bsdf, p.wo);
+  const SplitAnswers split = vs.splitAnswered ? vs.split : answerSplit(p, vs, u);
   reuseBounce(ctx, p, vs, split, result);
-  if (split.whole()) return false;
-  // A reused right sample traces its own bounce only where the reused term does not hold
-  // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
-  // BSDF's value only for a direction it keeps.
-  const BsdfSample bs = sampleBsdfDirection(bsdf, u.bsdf);
-  if (!bs.valid()) return false;
-  const glm::vec3 wi = frame.toWorld(bs.wi);
-  if (!sameSide(wi, p.hit, bs.wi) || split.reused(wi, bs.pdf)) return false;
+  if (!split.ownTraced) return false;
   ++result.ownBounces;
   p.reuse = nullptr;
   return true;

@@ -63,13 +63,18 @@ bool wideAgainstViews(const BsdfParams& bsdf, const glm::vec3& toLeft, const glm
 
 }  // namespace
 
+bool reusesWhole(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
+                 const glm::vec3& wo) {
+  return b.woAbove && b.normal == right.shadingNormal &&
+         b.geometricNormal == right.geometricNormal &&
+         lobesAlike(b.specularProbability, rightVertex.specularProbability) &&
+         wideAgainstViews(right.bsdf, b.wo, wo);
+}
+
 ReuseSplit::ReuseSplit(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
                        const glm::vec3& wo)
     : b_(b) {
-  whole_ = b.woAbove && b.normal == right.shadingNormal &&
-           b.geometricNormal == right.geometricNormal &&
-           lobesAlike(b.specularProbability, rightVertex.specularProbability) &&
-           wideAgainstViews(right.bsdf, b.wo, wo);
+  whole_ = reusesWhole(b, right, rightVertex, wo);
   if (whole_) return;
   frame_ = Frame::fromZ(b.normal);
   vertex_ = prepareBsdfPdf(right.bsdf, frame_.toLocal(b.wo), b.specularProbability);

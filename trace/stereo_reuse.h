@@ -160,6 +160,10 @@ inline bool leftCovers(const FirstBounce& b, const glm::vec3& w) {
 // unbiased; this choice only skips computing g where it would change next to nothing.)
 constexpr float kReusePdfRatio = 2.0f;
 
+// Whether every direction of the right vertex is the reused term's (below).
+bool reusesWhole(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
+                 const glm::vec3& wo);
+
 class ReuseSplit {
  public:
   // 'wo': the right view (unit, towards the right eye).
@@ -178,6 +182,14 @@ class ReuseSplit {
   bool whole_ = false;
   Frame frame_;
   BsdfVertex vertex_;
+};
+
+// What a reused right sample's first vertex needs of the split: whether the left's bounce
+// direction is the reused term's (reuseBounce adds it then), and whether the right sample's
+// own direction, drawn with the left's numbers, lies outside it (it traces its own bounce).
+struct SplitAnswers {
+  bool leftDirReused = false;
+  bool ownTraced = false;
 };
 
 // Primary hits whose shading normals are closer than acos(kPartnerNormalCos) ~ 25 degrees,

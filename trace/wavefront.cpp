@@ -153,6 +153,21 @@ void traceBounces(const TraceContext& ctx, std::span<PathState> paths,
   s.active.swap(s.next);
 }
 
+// The reused samples' splits, in lanes where the vertex has neither glass nor layers and its
+// split is not whole (trace/split_lanes.h); the rest the head answers one by one.
+void answerSplits(std::span<PathState> paths, WavefrontScratch& s) {
+  s.splitJobs.clear();
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const PathState& p = paths[i];
+    VertexShading& vs = s.shading[i];
+    if (!plainBsdf(p.hit.bsdf) || reusesWhole(*p.reuse, p.hit, vs.bsdf, p.wo)) continue;
+    vs.splitAnswered = true;
+    s.splitJobs.push_back({p.reuse, &vs.bsdf, &vs.frame, p.hit.geometricNormal, vs.reusing,
+                           vs.reused.pdf, p.reuse->numbers.bsdf, &vs.split});
+  }
+  splitAnswers(s.splitJobs);
+}
+
 }  // namespace
 
 WavefrontScratch& threadScratch() {
@@ -177,6 +192,7 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
       prepareVertex(params, vs);
   }
   prepareBrdfs(s.prepareJobs);
+  answerSplits(paths, s);
   for (size_t i = 0; i < n; ++i) {
     PathState& p = paths[i];
     const VertexNumbers& u = p.reuse->numbers;  // the head may drop p.reuse

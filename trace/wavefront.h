@@ -14,6 +14,7 @@
 #include "trace/bsdf_stage.h"
 #include "trace/path_stages.h"
 #include "trace/path_tracer.h"
+#include "trace/split_lanes.h"
 
 namespace photovr {
 
@@ -37,6 +38,7 @@ struct WavefrontScratch {
   enum class Sampling : uint8_t { None, Lanes, One };
   std::vector<VertexShading> shading;
   std::vector<BrdfPrepareJob> prepareJobs;
+  std::vector<SplitJob> splitJobs;  // reused samples' splits answered in lanes
   std::vector<Sampling> sampling;
   std::vector<const BsdfVertex*> laneVertices;
   std::vector<glm::vec2> laneNumbers;
