@@ -34,8 +34,8 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
     const VisibilityRecord rec = g.record(i);
     const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
     if (!rec.hit() || !isValidRecord(scene, rec)) {
-      hits[i] = RebuiltHit{};
-      hits[i].direction = rays.pixelRay(x, y);
+      hits[i - begin] = RebuiltHit{};
+      hits[i - begin].direction = rays.pixelRay(x, y);
       continue;
     }
     // Field by field: a whole struct built on the stack and copied stalled on store
@@ -55,7 +55,7 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
     const NamedHit& h = out[k];
     // Built in place (the aggregate's prvalue member is not copied): assigning a returned
     // RebuiltHit copied 160 bytes through the stack.
-    ::new (static_cast<void*>(&hits[pixels[k]]))
+    ::new (static_cast<void*>(&hits[pixels[k] - begin]))
         RebuiltHit{surfaceAt(scene, h.hit, h.geometry, named[k].direction), named[k].direction, h.t,
                    h.outside};
     outside += h.outside;

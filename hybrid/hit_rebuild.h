@@ -29,11 +29,11 @@ RebuiltHit rebuildPrimaryHit(const Scene& scene, const VisibilityRecord& record,
                              const glm::vec3& origin, const glm::vec3& direction);
 
 // rebuildPrimaryHit for pixels [begin, end) of 'g', each along rays.pixelRay from 'origin',
-// bit for bit: hits[i] for pixel i; where the record saw nothing or names nothing in
-// 'scene', RebuiltHit{} with the pixel's ray direction, which the tracer's loop reads for
-// every pixel (the background's environment) instead of computing it again. The rays' intersections
-// and geometry run eight at a time in SIMD lanes (namedHits). Returns how many hits were flagged
-// outside.
+// bit for bit: hits[i - begin] for pixel i (hits.size() >= end - begin); where the record saw
+// nothing or names nothing in 'scene', RebuiltHit{} with the pixel's ray direction, which the
+// tracer's loop reads for every pixel (the background's environment) instead of computing it again.
+// The rays' intersections and geometry run eight at a time in SIMD lanes (namedHits). Returns how
+// many hits were flagged outside.
 uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const CameraRays& rays,
                             const glm::vec3& origin, size_t begin, size_t end,
                             std::span<RebuiltHit> hits);

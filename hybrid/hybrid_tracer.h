@@ -28,13 +28,13 @@ struct HybridEyeStats {
 // Fills color, the AOVs and the demodulated diffuse/specular denoiser inputs.
 //
 // 'reuse': storage kept from frame to frame, or null. The traced image is built in
-// reuse->image (give the returned image back there when done with it) and the rebuilt hits
-// in reuse->hits: at 960x1080 the two are ~190 MB per eye, whose first touch as fresh
-// memory cost ~640 ms per eye here (docs/ARCHITECTURE.md, "Memory reuse").
+// reuse->image (give the returned image back there when done with it): at 960x1080 it and
+// the rebuilt hits the tracer then kept per image were ~190 MB per eye, whose first touch as
+// fresh memory cost ~640 ms per eye here (docs/ARCHITECTURE.md, "Memory reuse"); the hits
+// are now rebuilt a tile at a time into a buffer each thread keeps.
 // 'stereo': this eye's part in stereo path reuse (trace/stereo_reuse.h).
 struct HybridEyeBuffers {
   EyeImage image;
-  std::vector<RebuiltHit> hits;
 };
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& gbuffer,
                           const EyeCamera& camera, uint32_t eye, uint32_t frame,

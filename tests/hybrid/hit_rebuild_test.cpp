@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <span>
 
 #include "core/builtin_scenes.h"
 #include "trace/embree_scene.h"
@@ -73,7 +74,8 @@ TEST(HitRebuild, BatchesEqualOneByOneBitForBit) {
     std::vector<RebuiltHit> batch(n);
     // Two ranges, neither a multiple of 8 long, as the tracer's tasks split an image.
     uint64_t outside = rebuildPrimaryHits(scene, g, rays, cam.pose.position, 0, 100, batch);
-    outside += rebuildPrimaryHits(scene, g, rays, cam.pose.position, 100, n, batch);
+    outside += rebuildPrimaryHits(scene, g, rays, cam.pose.position, 100, n,
+                                  std::span(batch).subspan(100));  // pixel i's at i - 100
     uint64_t counted = 0, hits = 0;
     for (size_t i = 0; i < n; ++i) {
       const VisibilityRecord rec = g.record(i);
