@@ -290,28 +290,15 @@ inline SampleCounters ownPathCounters(SampleCounters own, uint32_t leftPixel) {
   return own;
 }
 
-// A sample's partner in the other eye's records (findPartner), or null with 'counters', the
-// numbers its own path draws: a right sample's turned to its left pixel's (ownPathCounters),
-// whether the right eye reuses or goes first; a left sample's its own.
-inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const SurfaceHit& hit,
-                                              const RightSample& sample, SampleCounters& counters) {
-  const bool right = role.leftEye != nullptr;
-  uint32_t leftPixel = kNoLeftPixel;
-  const FirstBounce* partner = nullptr;
-  if (role.reuse)
-    partner = findPartner(*role.reuse, hit, sample, right ? &leftPixel : nullptr);
-  else if (right)
-    leftPixel = leftPixelOf(*role.leftEye, hit, sample);
-  if (!partner && right) counters = ownPathCounters(counters, leftPixel);
-  return partner;
-}
-
 // The window a role's samples look into: the records it reuses, or the left eye's.
 inline const EyeWindow& windowOf(const StereoRole& role) {
   return role.reuse ? *role.reuse : *role.leftEye;
 }
 
-// partnerOrOwnNumbers from the sample's standing pixel in windowOf(role) (standingPixelOf).
+// A sample's partner in the other eye's records (findPartner), or null with 'counters', the
+// numbers its own path draws: a right sample's turned to its left pixel's (ownPathCounters),
+// whether the right eye reuses or goes first; a left sample's its own. 'standing': the
+// sample's standing pixel in windowOf(role) (standingPixelOf), for samples that look across.
 inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const SurfaceHit& hit,
                                               const StandingPixel& standing, uint32_t sample,
                                               SampleCounters& counters) {
@@ -324,6 +311,13 @@ inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const Surf
     leftPixel = standing.pixel;
   if (!partner && right) counters = ownPathCounters(counters, leftPixel);
   return partner;
+}
+
+// The same from the sample itself (pt, whose every sample has a hit of its own).
+inline const FirstBounce* partnerOrOwnNumbers(const StereoRole& role, const SurfaceHit& hit,
+                                              const RightSample& sample, SampleCounters& counters) {
+  return partnerOrOwnNumbers(role, hit, standingPixelOf(windowOf(role), hit, sample), sample.sample,
+                             counters);
 }
 
 }  // namespace photovr
