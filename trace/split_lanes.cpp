@@ -6,7 +6,9 @@
 #include "trace/bsdf_lanes.h"
 
 // -Wpsabi warns that 32-byte vectors pass differently with and without AVX; the lane helpers
-// are always inlined, so no call crosses that boundary.
+// are always inlined, so no call crosses that boundary (a helper left out of line is called
+// from the AVX2 clone with the default ABI: garbage in a build that does not inline it, as
+// the sanitized one does not).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace photovr {
@@ -36,15 +38,17 @@ struct alignas(32) SplitLanes8 {  // 32: see hit_geometry.cpp's Lanes8
 };
 
 // std::copysign(1.0f, v) lane by lane: 1 with v's sign bit.
-F8 signOf(const F8& v) {
+[[gnu::always_inline]] inline F8 signOf(const F8& v) {
   return F8((I8(v) & int32_t(0x80000000u)) | I8(F8{} + 1.0f));
 }
 
-V3<F8> localOf(const V3<F8>& v, const V3<F8>& x, const V3<F8>& y, const V3<F8>& z) {
+[[gnu::always_inline]] inline V3<F8> localOf(const V3<F8>& v, const V3<F8>& x, const V3<F8>& y,
+                                             const V3<F8>& z) {
   return {dot(v, x), dot(v, y), dot(v, z)};  // Frame::toLocal
 }
 
-V3<F8> worldOf(const V3<F8>& v, const V3<F8>& x, const V3<F8>& y, const V3<F8>& z) {
+[[gnu::always_inline]] inline V3<F8> worldOf(const V3<F8>& v, const V3<F8>& x, const V3<F8>& y,
+                                             const V3<F8>& z) {
   return {(v.x * x.x + v.y * y.x) + v.z * z.x, (v.x * x.y + v.y * y.y) + v.z * z.y,
           (v.x * x.z + v.y * y.z) + v.z * z.z};  // Frame::toWorld
 }
@@ -55,7 +59,7 @@ struct LeftPdf {
   const SplitIn& in;
   V3<F8> x, y;
   BrdfVertexOf<F8> vertex;
-  F8 operator()(const V3<F8>& w) const {
+  [[gnu::always_inline]] F8 operator()(const V3<F8>& w) const {
     const F8 zero = F8{} + 0.0f;
     const Mask8 covers = (in.leftWoAbove != 0.0f) & (dot(w, in.leftNormal) > 0.0f) &
                          (dot(w, in.leftGeometricNormal) > 0.0f);
@@ -66,7 +70,7 @@ struct LeftPdf {
 
 // orthonormalBasis (trace/sampling.h) of the left normal, and the left lobe
 // (prepareBsdfPdf's: the right material's alpha, x1L's view and lobe choice).
-LeftPdf leftPdfOf(const SplitIn& in) {
+[[gnu::always_inline]] inline LeftPdf leftPdfOf(const SplitIn& in) {
   const V3<F8>& n = in.leftNormal;
   const F8 sign = signOf(n.z);
   const F8 a = -1.0f / (sign + n.z);
