@@ -29,13 +29,16 @@ std::string mutate(std::string s, std::mt19937& rng, const std::string& alphabet
       for (int i = 0, n = 1 + int(rng() % 4); i < n && !s.empty(); ++i)
         s[at(s.size())] = alphabet.empty() ? char(rng()) : alphabet[at(alphabet.size())];
       break;
-    case 1: s.erase(at(s.size()), 1 + at(24)); break;
+    case 1:
+      s.erase(at(s.size()), 1 + at(24));
+      break;
     case 2: {
       const size_t begin = at(s.size());
       s.insert(begin, s.substr(begin, 1 + at(24)));
       break;
     }
-    default: s.resize(at(s.size() + 1));
+    default:
+      s.resize(at(s.size() + 1));
   }
   return s;
 }
