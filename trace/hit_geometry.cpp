@@ -225,6 +225,25 @@ Corners<float> cornersOf(const Scene& scene, const HitRef& hit) {
           normalOrZero(mesh, idx[2])};
 }
 
+// The last hit's corners, gathered again only at a new triangle: a batch's hits come in pixel
+// order, so neighbours often share one (2/3 of spheres' gathers, 37-39 % of atrium's and
+// cornell's at 240x270, primary and bounce hits together), and each gather is a chain of
+// dependent loads (instance, mesh, indices, then the corners).
+class LastCorners {
+ public:
+  const Corners<float>& of(const Scene& scene, const HitRef& hit) {
+    if (hit.instance != instance_ || hit.triangle != triangle_) {
+      corners_ = cornersOf(scene, hit);
+      instance_ = hit.instance, triangle_ = hit.triangle;
+    }
+    return corners_;
+  }
+
+ private:
+  uint32_t instance_ = ~0u, triangle_ = ~0u;
+  Corners<float> corners_;
+};
+
 glm::vec3 toGlm(const V3<float>& v) {
   return {v.x, v.y, v.z};
 }
@@ -299,12 +318,13 @@ void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<H
   const size_t n = hits.size(), groups = (n + 7) / 8;
   thread_local std::vector<Lanes8> lanes;
   lanes.resize(groups);
+  LastCorners last;
   for (size_t i = 0; i < groups * 8; ++i) {
     // Lanes past the end repeat the last hit (their results are dropped).
     const HitRef& hit = hits[std::min(i, n - 1)];
     prefetchAhead(scene, i, n, [&](size_t j) -> const HitRef& { return hits[j]; });
     Lanes8& l = lanes[i / 8];
-    setCorners(l, i % 8, cornersOf(scene, hit));
+    setCorners(l, i % 8, last.of(scene, hit));
     l.b1[i % 8] = hit.b1;
     l.b2[i % 8] = hit.b2;
   }
@@ -325,12 +345,13 @@ void namedHits(const Scene& scene, const glm::vec3& origin, std::span<const Name
   const size_t n = rays.size(), groups = (n + 7) / 8;
   thread_local std::vector<NamedLanes8> lanes;
   lanes.resize(groups);
+  LastCorners last;
   for (size_t i = 0; i < groups * 8; ++i) {
     const NamedRay& ray = rays[std::min(i, n - 1)];  // as in hitGeometries
     prefetchAhead(scene, i, n, [&](size_t j) -> const HitRef& { return rays[j].hit; });
     NamedLanes8& l = lanes[i / 8];
     const size_t k = i % 8;
-    setCorners(l, k, cornersOf(scene, ray.hit));
+    setCorners(l, k, last.of(scene, ray.hit));
     l.origin.x[k] = origin.x, l.origin.y[k] = origin.y, l.origin.z[k] = origin.z;
     l.dir.x[k] = ray.direction.x, l.dir.y[k] = ray.direction.y, l.dir.z[k] = ray.direction.z;
     l.b1[k] = ray.hit.b1;
