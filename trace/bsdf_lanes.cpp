@@ -4,6 +4,8 @@
 #include <cassert>
 #include <vector>
 
+#include "trace/scratch.h"
+
 // -Wpsabi warns that 32-byte vectors pass differently with and without AVX; the lane helpers
 // are always inlined, so no call crosses that boundary.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -111,7 +113,7 @@ void prepareBrdfs(std::span<const BrdfPrepareJob> jobs) {
   bool second = false;
   for (const BrdfPrepareJob& job : jobs) second |= job.eval2 != nullptr;
   thread_local std::vector<PrepareLanes8> groups;
-  groups.resize(count);
+  growTo(groups, count);
   for (size_t i = 0; i < count * 8; ++i) {
     const BrdfPrepareJob& job = jobs[std::min(i, n - 1)];  // as in sampleBrdfs
     assert(plainBsdf(*job.params));
@@ -161,7 +163,7 @@ void sampleBrdfs(std::span<const BsdfVertex* const> vertices, std::span<const gl
   const size_t n = vertices.size(), count = (n + 7) / 8;
   if (n == 0) return;
   thread_local std::vector<BrdfLanes8> groups;
-  groups.resize(count);
+  growTo(groups, count);
   for (size_t i = 0; i < count * 8; ++i) {
     // Lanes past the end repeat the last vertex (their samples are dropped).
     const size_t from = std::min(i, n - 1), k = i % 8;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "trace/lanes.h"
+#include "trace/scratch.h"
 
 // -Wpsabi warns that 32-byte vectors pass differently with and without AVX; these helpers
 // are file-local and always inlined, so no call crosses that boundary.
@@ -317,7 +318,7 @@ void hitGeometries(const Scene& scene, std::span<const HitRef> hits, std::span<H
   assert(out.size() == hits.size());
   const size_t n = hits.size(), groups = (n + 7) / 8;
   thread_local std::vector<Lanes8> lanes;
-  lanes.resize(groups);
+  growTo(lanes, groups);
   LastCorners last;
   for (size_t i = 0; i < groups * 8; ++i) {
     // Lanes past the end repeat the last hit (their results are dropped).
@@ -344,7 +345,7 @@ void namedHits(const Scene& scene, const glm::vec3& origin, std::span<const Name
   assert(out.size() == rays.size());
   const size_t n = rays.size(), groups = (n + 7) / 8;
   thread_local std::vector<NamedLanes8> lanes;
-  lanes.resize(groups);
+  growTo(lanes, groups);
   LastCorners last;
   for (size_t i = 0; i < groups * 8; ++i) {
     const NamedRay& ray = rays[std::min(i, n - 1)];  // as in hitGeometries

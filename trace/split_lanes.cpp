@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "trace/bsdf_lanes.h"
+#include "trace/scratch.h"
 
 // -Wpsabi warns that 32-byte vectors pass differently with and without AVX; the lane helpers
 // are always inlined, so no call crosses that boundary (a helper left out of line is called
@@ -146,7 +147,7 @@ void setJob(SplitIn& in, size_t k, const SplitJob& job) {
 void splitAnswers(std::span<const SplitJob> jobs) {
   const size_t n = jobs.size(), groups = (n + 7) / 8;
   thread_local std::vector<SplitLanes8> lanes;
-  lanes.resize(groups);
+  growTo(lanes, groups);
   for (size_t i = 0; i < groups * 8; ++i)  // lanes past the end repeat the last job
     setJob(lanes[i / 8].in, i % 8, jobs[std::min(i, n - 1)]);
   splitLanes(lanes.data(), groups);

@@ -1,6 +1,7 @@
 #include "trace/wavefront.h"
 
 #include "trace/bsdf_lanes.h"
+#include "trace/scratch.h"
 
 namespace photovr {
 namespace {
@@ -16,14 +17,6 @@ void drawAll(const TraceContext& ctx, std::span<const PathState> paths, Wavefron
   for (size_t j = 0; j < n; ++j) s.samplers[j] = paths[s.active[j]].sampler;
   const uint32_t depth = paths[s.active[0]].depth;
   drawBatchNumbers(s.samplers, depth, vertexDraws(ctx, depth), s.numbers);
-}
-
-// Vectors that keep their elements from batch to batch: resized only to grow (a shrink
-// and regrow default-constructed ~1000 VertexShading per batch, a tenth of continuePaths'
-// own time).
-template <typename T>
-void growTo(std::vector<T>& v, size_t n) {
-  if (v.size() < n) v.resize(n);
 }
 
 // A prepare job for the lanes, written in place: one built on the stack and copied in
