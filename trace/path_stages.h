@@ -27,6 +27,11 @@ namespace photovr {
 
 // A path between bounces.
 struct PathState {
+  // Every member has its initialiser. Provided, so that a batch's emplace_back() (value-
+  // initialisation) only runs them: with the implicit constructor GCC zero-filled the whole
+  // state first (a `rep stos` of 288 bytes, a third of PathBatcher::addHit's time).
+  PathState() {}
+
   SurfaceHit hit;  // the current vertex
   glm::vec3 wo{0.0f};
   glm::vec3 beta{1.0f};  // throughput up to the current vertex
