@@ -114,6 +114,12 @@ struct VertexShading {
 void startVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                  PathResult& result, VertexShading& vs);
 void prepareVertex(const BsdfParams& params, VertexShading& vs);
+// A first vertex's specular albedo (the denoiser's demodulation), from its prepared BSDF;
+// nothing at later depths. A step of its own between prepareVertex and shadeVertexHead, so
+// that a batch runs it in a loop of its own: inside the head, its envBrdfApprox and exp2f
+// chain was a latency the out-of-order core could not overlap with the next vertex
+// (two fifths of specularAlbedo's time stalled on its result, perf annotate).
+void shadeSpecularAlbedo(const PathState& path, const VertexShading& vs, PathResult& result);
 bool shadeVertexHead(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                      PathResult& result, ShadowRay& shadow, VertexShading& vs);
 // A reused right sample's split at its first vertex (path.reuse set; vs prepared): what

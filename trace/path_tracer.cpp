@@ -312,11 +312,15 @@ void prepareVertex(const BsdfParams& params, VertexShading& vs) {
   if (vs.reusing) vs.reused = evalBsdfAndPdf(vs.bsdf, vs.wiReused);
 }
 
+void shadeSpecularAlbedo(const PathState& p, const VertexShading& vs, PathResult& result) {
+  if (p.depth == 0)
+    result.specularAlbedo =
+        specularAlbedo(vs.bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
+}
+
 bool shadeVertexHead(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
                      PathResult& result, ShadowRay& shadow, VertexShading& vs) {
   const BsdfVertex& bsdf = vs.bsdf;
-  if (p.depth == 0)
-    result.specularAlbedo = specularAlbedo(bsdf, p.hit.bsdf, glm::dot(p.hit.shadingNormal, p.wo));
   vs.rays = {};
   if (vs.lit && directLight(ctx, p, vs, shadow)) {
     if (leftShadowAnswers(p))
@@ -384,6 +388,7 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumber
   VertexShading vs;
   startVertex(ctx, p, u, result, vs);
   prepareVertex(p.hit.bsdf, vs);
+  shadeSpecularAlbedo(p, vs, result);
   if (!shadeVertexHead(ctx, p, u, result, shadow, vs)) return vs.rays;
   return shadeVertexTail(ctx, p, u, result, vs, sampleBsdf(vs.bsdf, u.bsdf), bounce);
 }

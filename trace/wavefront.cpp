@@ -64,6 +64,9 @@ void shadeAll(const TraceContext& ctx, std::span<PathState> paths, std::span<Pat
       prepareVertex(params, vs);
   }
   prepareBrdfs(s.prepareJobs);
+  if (paths[s.active[0]].depth == 0)
+    for (size_t j = 0; j < n; ++j)
+      shadeSpecularAlbedo(paths[s.active[j]], s.shading[j], results[s.active[j]]);
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.active[j];
     ShadowRay& shadow = s.shadows.emplace_back();
@@ -185,6 +188,7 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
       prepareVertex(params, vs);
   }
   prepareBrdfs(s.prepareJobs);
+  for (size_t i = 0; i < n; ++i) shadeSpecularAlbedo(paths[i], s.shading[i], results[i]);
   answerSplits(paths, s);
   for (size_t i = 0; i < n; ++i) {
     PathState& p = paths[i];
