@@ -110,6 +110,18 @@ class CameraRays {
   glm::vec3 throughCentre(int x, int y) const {
     return base_ + (float(x) + 0.5f) * dx_ + (float(y) + 0.5f) * dy_;
   }
+  // What direction() computes from, for its eight-lane form (trace/camera_lanes.h).
+  struct Map {
+    glm::mat3 rotation;
+    float left, down;    // the field's tangents ...
+    float spanX, spanY;  // ... and its extent, left + right and up + down
+    glm::vec2 jitter;
+    int width, height;
+  };
+  Map map() const {
+    return {rotation_,           fov_.left, fov_.down, fov_.left + fov_.right,
+            fov_.up + fov_.down, jitter_,   width_,    height_};
+  }
 
  private:
   glm::vec3 base_, dx_, dy_;

@@ -4,6 +4,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "trace/camera_lanes.h"
+
 namespace photovr {
 namespace {
 
@@ -27,15 +29,17 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
   thread_local std::vector<NamedRay> named;
   thread_local std::vector<NamedHit> out;
   thread_local std::vector<size_t> pixels;
+  thread_local std::vector<glm::vec3> directions;
   named.resize(end - begin);
   pixels.resize(end - begin);
+  directions.resize(end - begin);
+  pixelRays(rays, begin, directions);
   size_t count = 0;
   for (size_t i = begin; i < end; ++i) {
     const VisibilityRecord rec = g.record(i);
-    const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
     if (!rec.hit() || !isValidRecord(scene, rec)) {
       hits[i - begin] = RebuiltHit{};
-      hits[i - begin].direction = rays.pixelRay(x, y);
+      hits[i - begin].direction = directions[i - begin];
       continue;
     }
     // Field by field: a whole struct built on the stack and copied stalled on store
@@ -45,7 +49,7 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
     ray.hit.triangle = rec.triangle;
     ray.hit.b1 = rec.b1;
     ray.hit.b2 = rec.b2;
-    ray.direction = rays.pixelRay(x, y);
+    ray.direction = directions[i - begin];
     pixels[count++] = i;
   }
   out.resize(count);

@@ -30,9 +30,11 @@ void standingPixels(const StereoRole& stereo, const gl::GBufferImage& g, const C
                     size_t end, std::vector<StandingPixel>& out) {
   out.assign(end - begin, StandingPixel{});
   const EyeWindow& window = windowOf(stereo);
+  // Walked, not divided: pixel i's x and y from the previous pixel's.
+  int x = int(begin % size_t(g.width)) - 1, y = int(begin / size_t(g.width));
   for (size_t i = begin; i < end; ++i) {
+    if (++x == g.width) x = 0, ++y;
     if (!g.record(i).hit()) continue;
-    const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
     StandingPixel& s = out[i - begin];
     s = standingPixelOf(window, hits[i - begin].surface,
                         {cam.pose.position, rays.throughCentre(x, y), cam.jitter, 0});

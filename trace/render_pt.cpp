@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "trace/camera_lanes.h"
 #include "trace/hit_geometry.h"
 #include "trace/path_tracer.h"
 #include "trace/path_batcher.h"
@@ -40,19 +41,24 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const CameraRays camRays(cam);
   thread_local std::vector<BatchRayHit> primary;
+  thread_local std::vector<glm::vec2> positions;
+  thread_local std::vector<glm::vec3> directions;
   thread_local PathBatcher batcher;
-  primary.clear();
+  positions.clear();
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x)
       for (uint32_t s = 0; s < spp; ++s) {
         const SampleCounters c{uint32_t(img.index(x, y)), eye, frame, s, 0, ctx.settings.seed, spp,
                                ctx.settings.sampler};
-        const glm::vec2 p =
-            glm::vec2(x + 0.5f, y + 0.5f) + samplePosition(ctx.settings.sampler, c.sampleIndex());
-        // In place: a ray made on the stack and copied stalled on store forwarding.
-        primary.emplace_back().ray.set(cam.pose.position, camRays.direction(p.x, p.y), 0.0f,
-                                       kInfinity);
+        positions.push_back(glm::vec2(x + 0.5f, y + 0.5f) +
+                            samplePosition(ctx.settings.sampler, c.sampleIndex()));
       }
+  directions.resize(positions.size());
+  sampleRays(camRays, positions, directions);
+  primary.clear();
+  // In place: a ray made on the stack and copied stalled on store forwarding.
+  for (const glm::vec3& dir : directions)
+    primary.emplace_back().ray.set(cam.pose.position, dir, 0.0f, kInfinity);
   ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall,
                             RayRole::Camera);
   counts.traced.rays += primary.size();
