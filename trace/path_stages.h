@@ -125,6 +125,8 @@ bool shadeVertexHead(const TraceContext& ctx, PathState& path, const VertexNumbe
 // A reused right sample's split at its first vertex (path.reuse set; vs prepared): what
 // shadeVertexHead asks, and trace/split_lanes.h answers for a batch.
 SplitAnswers answerSplit(const PathState& path, const VertexShading& vs, const VertexNumbers& u);
+// answerSplit where reusesWhole holds: every direction is the reused term's.
+SplitAnswers answerWholeSplit(const PathState& path, const VertexShading& vs);
 VertexRays shadeVertexTail(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
                            PathResult& result, const VertexShading& vs, const BsdfSample& bs,
                            BatchRay& bounce);

@@ -193,15 +193,20 @@ void reuseBounce(const TraceContext& ctx, const PathState& p, const VertexShadin
 
 }  // namespace
 
-SplitAnswers answerSplit(const PathState& p, const VertexShading& vs, const VertexNumbers& u) {
-  const FirstBounce& b = *p.reuse;
-  const ReuseSplit split(b, p.hit, vs.bsdf, p.wo);
+SplitAnswers answerWholeSplit(const PathState& p, const VertexShading& vs) {
   SplitAnswers a;
   // Only where the left path's bounce term was not 0 (a valid sample, not rejected), and its
   // direction leaves this vertex's side.
-  a.leftDirReused = vs.reusing && glm::dot(b.dir, p.hit.geometricNormal) > 0.0f &&
-                    split.reused(b.dir, vs.reused.pdf);
-  if (split.whole()) return a;
+  a.leftDirReused = vs.reusing && glm::dot(p.reuse->dir, p.hit.geometricNormal) > 0.0f;
+  return a;
+}
+
+SplitAnswers answerSplit(const PathState& p, const VertexShading& vs, const VertexNumbers& u) {
+  const FirstBounce& b = *p.reuse;
+  const ReuseSplit split(b, p.hit, vs.bsdf, p.wo);
+  if (split.whole()) return answerWholeSplit(p, vs);
+  SplitAnswers a = answerWholeSplit(p, vs);
+  a.leftDirReused = a.leftDirReused && split.reused(b.dir, vs.reused.pdf);
   // A reused right sample traces its own bounce only where the reused term does not hold
   // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
   // BSDF's value only for a direction it keeps.

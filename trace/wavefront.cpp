@@ -149,15 +149,20 @@ void traceBounces(const TraceContext& ctx, std::span<PathState> paths,
   s.active.swap(s.next);
 }
 
-// The reused samples' splits, in lanes where the vertex has neither glass nor layers and its
-// split is not whole (trace/split_lanes.h); the rest the head answers one by one.
+// The reused samples' splits where the vertex has neither glass nor layers: a whole split
+// here, the others in lanes (trace/split_lanes.h); the rest the head answers one by one.
+// (The head had asked reusesWhole again for each whole split, a libm cosf among it.)
 void answerSplits(std::span<PathState> paths, WavefrontScratch& s) {
   s.splitJobs.clear();
   for (size_t i = 0; i < paths.size(); ++i) {
     const PathState& p = paths[i];
     VertexShading& vs = s.shading[i];
-    if (!plainBsdf(p.hit.bsdf) || reusesWhole(*p.reuse, p.hit, vs.bsdf, p.wo)) continue;
+    if (!plainBsdf(p.hit.bsdf)) continue;
     vs.splitAnswered = true;
+    if (reusesWhole(*p.reuse, p.hit, vs.bsdf, p.wo)) {
+      vs.split = answerWholeSplit(p, vs);
+      continue;
+    }
     s.splitJobs.push_back({p.reuse, &vs.bsdf, &vs.frame, p.hit.geometricNormal, vs.reusing,
                            vs.reused.pdf, p.reuse->numbers.bsdf, &vs.split});
   }
