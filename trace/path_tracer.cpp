@@ -204,8 +204,8 @@ SplitAnswers answerWholeSplit(const PathState& p, const VertexShading& vs) {
 SplitAnswers answerSplit(const PathState& p, const VertexShading& vs, const VertexNumbers& u) {
   const FirstBounce& b = *p.reuse;
   const ReuseSplit split(b, p.hit, vs.bsdf, p.wo);
-  if (split.whole()) return answerWholeSplit(p, vs);
   SplitAnswers a = answerWholeSplit(p, vs);
+  if (split.whole()) return a;
   a.leftDirReused = a.leftDirReused && split.reused(b.dir, vs.reused.pdf);
   // A reused right sample traces its own bounce only where the reused term does not hold
   // the direction (trace/stereo_reuse.h): most do not, so its direction comes first, and the
