@@ -13,6 +13,7 @@
 #include "core/stopwatch.h"
 #include "hybrid/hit_rebuild.h"
 #include "trace/path_batcher.h"
+#include "trace/standing_lanes.h"
 
 namespace photovr {
 namespace {
@@ -21,25 +22,28 @@ constexpr size_t kGrain = 256;  // pixels per task
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 // The standing pixels (stereo_reuse.h) of pixels [begin, end) that hit a surface (hits[i -
-// begin] pixel i's), in one
-// pass before the tile's samples need them, each record asked for as it is found: the
-// lookups' arithmetic overlaps from pixel to pixel, and the records have arrived by the
-// time the samples read them.
+// begin] pixel i's), in SIMD lanes (trace/standing_lanes.h) before the tile's samples need
+// them, then each record asked for: the records have arrived by the time the samples read
+// them.
 void standingPixels(const StereoRole& stereo, const gl::GBufferImage& g, const CameraRays& rays,
                     const EyeCamera& cam, std::span<const RebuiltHit> hits, size_t begin,
                     size_t end, std::vector<StandingPixel>& out) {
   out.assign(end - begin, StandingPixel{});
-  const EyeWindow& window = windowOf(stereo);
+  thread_local std::vector<StandingJob> jobs;
+  jobs.clear();
   // Walked, not divided: pixel i's x and y from the previous pixel's.
   int x = int(begin % size_t(g.width)) - 1, y = int(begin / size_t(g.width));
   for (size_t i = begin; i < end; ++i) {
     if (++x == g.width) x = 0, ++y;
     if (!g.record(i).hit()) continue;
-    StandingPixel& s = out[i - begin];
-    s = standingPixelOf(window, hits[i - begin].surface,
-                        {cam.pose.position, rays.throughCentre(x, y), cam.jitter, 0});
-    if (stereo.reuse) prefetchPartner(*stereo.reuse, s);
+    StandingJob& job = jobs.emplace_back();
+    job.hit = &hits[i - begin].surface;
+    job.centreRay = rays.throughCentre(x, y);
+    job.out = &out[i - begin];
   }
+  standingPixelsOf(windowOf(stereo), cam.pose.position, cam.jitter, jobs);
+  if (stereo.reuse)
+    for (const StandingJob& job : jobs) prefetchPartner(*stereo.reuse, *job.out);
 }
 
 }  // namespace
