@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
+#include "tests/trace/trace_test_util.h"
 
 namespace photovr {
 namespace {
@@ -17,17 +17,9 @@ bool sameBits(const glm::vec3& a, const glm::vec3& b) {
   return std::memcmp(&a, &b, sizeof(glm::vec3)) == 0;
 }
 
-// A camera of odd size (runs cross rows and end off the lanes' groups of eight), turned
-// anyhow, with an asymmetric field and a sub-pixel jitter.
+// Cameras turned any way (trace_test_util.h).
 EyeCamera randomCamera(std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  EyeCamera c;
-  c.width = 37 + int(rng() % 50);
-  c.height = 11 + int(rng() % 30);
-  c.fov = {1.0f + 0.5f * u(rng), 1.0f + 0.5f * u(rng), 1.2f + 0.3f * u(rng), 0.9f + 0.3f * u(rng)};
-  c.jitter = glm::vec2(0.5f * u(rng), 0.5f * u(rng));
-  c.pose.orientation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
-  return c;
+  return testing::randomEyeCamera(rng, 0.0f);
 }
 
 TEST(CameraLanes, GiveThePixelRaysBitForBit) {

@@ -11,22 +11,11 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/quaternion.hpp>
+
+#include "tests/trace/trace_test_util.h"
 
 namespace photovr {
 namespace {
-
-EyeCamera randomEye(std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  EyeCamera c;
-  c.width = 40 + int(rng() % 60);
-  c.height = 30 + int(rng() % 60);
-  c.fov = {1.0f + 0.3f * u(rng), 1.0f + 0.3f * u(rng), 1.2f + 0.2f * u(rng), 1.1f + 0.2f * u(rng)};
-  c.jitter = glm::vec2(0.5f * u(rng), 0.5f * u(rng));
-  c.pose.position = glm::vec3(u(rng), u(rng), u(rng));
-  c.pose.orientation = glm::normalize(glm::quat(4.0f, 0.3f * u(rng), 0.3f * u(rng), 0.3f * u(rng)));
-  return c;
-}
 
 TEST(StandingLanes, GiveTheScalarStandingPixelsBitForBit) {
   std::mt19937 rng(3);
@@ -34,7 +23,7 @@ TEST(StandingLanes, GiveTheScalarStandingPixelsBitForBit) {
   size_t found = 0, none = 0, total = 0;
   for (int k = 0; k < 30; ++k) {
     EyeWindow left;
-    left.set(randomEye(rng), 1);
+    left.set(testing::randomEyeCamera(rng, 4.0f), 1);  // looking near -Z
     const glm::vec3 eye = left.camera.pose.position + glm::vec3(0.0635f, 0.01f * u(rng), 0.0f);
     const glm::vec2 offset(0.5f * u(rng), 0.5f * u(rng));
     const size_t n = 1 + rng() % 70;  // ragged ends of the groups of eight
