@@ -23,7 +23,8 @@ RebuiltHit rebuildPrimaryHit(const Scene& scene, const VisibilityRecord& record,
   return fromNamedHit(scene, namedHit(scene, origin, ray), direction);
 }
 
-uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const CameraRays& rays,
+uint64_t rebuildPrimaryHits(const Scene& scene, const MaterialTable& materials,
+                            const gl::GBufferImage& g, const CameraRays& rays,
                             const glm::vec3& origin, size_t begin, size_t end,
                             std::span<RebuiltHit> hits) {
   thread_local std::vector<NamedRay> named;
@@ -60,8 +61,8 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const
     // Built in place (the aggregate's prvalue member is not copied): assigning a returned
     // RebuiltHit copied 160 bytes through the stack.
     ::new (static_cast<void*>(&hits[pixels[k] - begin]))
-        RebuiltHit{surfaceAt(scene, h.hit, h.geometry, named[k].direction), named[k].direction, h.t,
-                   h.outside};
+        RebuiltHit{surfaceAt(scene, materials, h.hit, h.geometry, named[k].direction),
+                   named[k].direction, h.t, h.outside};
     outside += h.outside;
   }
   return outside;

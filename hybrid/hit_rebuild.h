@@ -33,8 +33,10 @@ RebuiltHit rebuildPrimaryHit(const Scene& scene, const VisibilityRecord& record,
 // nothing or names nothing in 'scene', RebuiltHit{} with the pixel's ray direction, which the
 // tracer's loop reads for every pixel (the background's environment) instead of computing it again.
 // The rays' intersections and geometry run eight at a time in SIMD lanes (namedHits). Returns how
-// many hits were flagged outside.
-uint64_t rebuildPrimaryHits(const Scene& scene, const gl::GBufferImage& g, const CameraRays& rays,
+// many hits were flagged outside. 'materials': the scene's (MaterialTable(scene), or the
+// tracer's EmbreeScene::materials()).
+uint64_t rebuildPrimaryHits(const Scene& scene, const MaterialTable& materials,
+                            const gl::GBufferImage& g, const CameraRays& rays,
                             const glm::vec3& origin, size_t begin, size_t end,
                             std::span<RebuiltHit> hits);
 

@@ -71,8 +71,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     const auto start = Clock::now();
     thread_local std::vector<RebuiltHit> tileHits;  // pixel i's at i - r.begin()
     tileHits.resize(r.size());
-    outside +=
-        rebuildPrimaryHits(ctx.scene, g, camRays, cam.pose.position, r.begin(), r.end(), tileHits);
+    outside += rebuildPrimaryHits(ctx.scene, ctx.embree.materials(), g, camRays, cam.pose.position,
+                                  r.begin(), r.end(), tileHits);
     const auto rebuilt = Clock::now();
     const std::span<const RebuiltHit> hits(tileHits);
     enableFlushToZero();

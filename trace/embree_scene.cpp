@@ -255,7 +255,7 @@ void EmbreeScene::Impl::buildInstances(EmbreeStats& stats) {
 }
 
 EmbreeScene::EmbreeScene(const Scene& scene, const WorkSkips& skips)
-    : impl_(std::make_unique<Impl>(scene)) {
+    : impl_(std::make_unique<Impl>(scene)), materials_(scene) {
   const auto t0 = std::chrono::steady_clock::now();
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");

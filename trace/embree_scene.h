@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "trace/surface.h"
 #include "trace/work_skips.h"
 
 namespace photovr {
@@ -197,11 +198,15 @@ class EmbreeScene {
                               ReplayHitShader shader = nullptr, const void* user = nullptr) const;
 
   const EmbreeStats& stats() const { return stats_; }
+  // The scene's untextured materials' inputs, computed once with its BVHs (like its
+  // back-face culling, they are the materials' at construction).
+  const MaterialTable& materials() const { return materials_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   EmbreeStats stats_;
+  MaterialTable materials_;
   RayRecorder* recorder_ = nullptr;
 };
 

@@ -431,7 +431,7 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
   const HitRef ref{th.instance, th.triangle, th.b1, th.b2};
   SurfaceHit next = !th.hit  ? SurfaceHit{}
                     : p.last ? surfaceEmissionAt(ctx.scene, ref, geometry, p.wi)
-                             : surfaceAt(ctx.scene, ref, geometry, p.wi);
+                             : surfaceAt(ctx.scene, ctx.embree.materials(), ref, geometry, p.wi);
   if (th.hit) {
     absorbAlong(ctx.scene, p, th, next, p.beta);
     // Inside another medium an interface bends light by the two media's ratio.

@@ -87,7 +87,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           batcher.addMiss(ctx.lights.environmentRadiance(dir));
           continue;
         }
-        const SurfaceHit hit = surfaceAt(ctx.scene, hits[k], geometry[k], dir);
+        const SurfaceHit hit =
+            surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], dir);
         ++k;
         if (first) {
           img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));

@@ -148,35 +148,66 @@ SurfaceHit fromGeometry(const HitRef& ref, const HitGeometry& g, const glm::vec3
   return h;
 }
 
-}  // namespace
-
-SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g,
-                     const glm::vec3& incoming) {
+// surfaceAt, with 'constant' the material's table entry where it has one (untextured).
+SurfaceHit shadeSurface(const Scene& scene, const ConstantMaterial* constant, const HitRef& ref,
+                        const HitGeometry& g, const glm::vec3& incoming) {
   SurfaceHit h = fromGeometry(ref, g, incoming);
   const Instance& inst = scene.instances[ref.instance];
   const Mesh& mesh = scene.meshes[inst.mesh];
   const Material& mat = scene.materials[mesh.material];
-  const uint32_t* idx = &mesh.indices[3 * size_t(ref.triangle)];
   const glm::mat4& m = inst.transform;
-  // Texture coordinates and tangents only where a texture reads them: interpolating the
-  // first set was a third of surfaceAt's time on spheres, which has no texture.
-  const Interpolated in = mat.textured() ? interpolate(mesh, idx, ref.b1, ref.b2) : Interpolated{};
   const glm::vec3& interpolated = g.normal;
-  // Only where there is a map: the call alone, to return 'interpolated', was 2 % of
-  // cornell's tracer (its result waited on through the stack frame's teardown).
-  glm::vec3 ns = mat.normalTexture.valid() ? applyNormalMap(scene, mat.normalTexture,
-                                                            mat.normalScale, in, m, interpolated)
-                                           : interpolated;
   // Shading normal on the viewer's side of the geometry (back faces of double-sided
   // materials shade with the flipped normal, glTF 3.9.6).
-  if (glm::dot(ns, h.geometricNormal) < 0.0f) ns = -ns;
-  h.shadingNormal = ns;
-  h.bsdf = materialAt(scene, mat, in);
+  const auto facing = [&](glm::vec3 n) { return glm::dot(n, h.geometricNormal) < 0.0f ? -n : n; };
+  Interpolated in;
+  if (constant) {
+    h.shadingNormal = facing(interpolated);
+    h.bsdf = constant->bsdf;
+    h.emission = constant->emission[h.frontFace];
+  } else {
+    // Texture coordinates and tangents only where a texture reads them: interpolating the
+    // first set was a third of surfaceAt's time on spheres, which has no texture.
+    if (mat.textured())
+      in = interpolate(mesh, &mesh.indices[3 * size_t(ref.triangle)], ref.b1, ref.b2);
+    // Only where there is a map: the call alone, to return 'interpolated', was 2 % of
+    // cornell's tracer (its result waited on through the stack frame's teardown).
+    h.shadingNormal =
+        facing(mat.normalTexture.valid()
+                   ? applyNormalMap(scene, mat.normalTexture, mat.normalScale, in, m, interpolated)
+                   : interpolated);
+    h.bsdf = materialAt(scene, mat, in);
+    h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);
+  }
   if (h.bsdf.clearcoat > 0.0f) h.bsdf.coatNormal = coatNormalAt(scene, mat, in, m, interpolated, h);
   // A volume's interface: entering from the front, leaving from the back.
   if (!h.bsdf.thinWalled && !h.frontFace && h.bsdf.eta > 0.0f) h.bsdf.eta = 1.0f / h.bsdf.eta;
-  h.emission = emission(scene, mat, in.uv0, in.uv1, h.frontFace);
   return h;
+}
+
+}  // namespace
+
+MaterialTable::MaterialTable(const Scene& scene)
+    : constants_(scene.materials.size()), constant_(scene.materials.size(), 0) {
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& mat = scene.materials[i];
+    if (mat.textured()) continue;
+    constant_[i] = 1;
+    constants_[i].bsdf = materialAt(scene, mat, Interpolated{});
+    for (const bool front : {false, true})
+      constants_[i].emission[front] = emission(scene, mat, {}, {}, front);
+  }
+}
+
+SurfaceHit surfaceAt(const Scene& scene, const HitRef& ref, const HitGeometry& g,
+                     const glm::vec3& incoming) {
+  return shadeSurface(scene, nullptr, ref, g, incoming);
+}
+
+SurfaceHit surfaceAt(const Scene& scene, const MaterialTable& materials, const HitRef& ref,
+                     const HitGeometry& g, const glm::vec3& incoming) {
+  const uint32_t material = uint32_t(scene.meshes[scene.instances[ref.instance].mesh].material);
+  return shadeSurface(scene, materials.constantOf(material), ref, g, incoming);
 }
 
 SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,

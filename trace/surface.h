@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -24,6 +25,29 @@ struct SurfaceHit {
   bool frontFace = true;  // the ray hit the counter-clockwise side
 };
 
+// The BSDF inputs and emission of each material that reads no texture: constant over its
+// surface, so the tracer computes them once per scene (EmbreeScene::materials) instead of at
+// every hit: with materialAt's clamps, Material::iorF0's double division and textured()'s
+// walk over 13 slots, surfaceAt was 8 % of the reusing eye's tracer samples on spheres, 4.5 %
+// with the table (docs/MEASUREMENTS.md). The entries are what surfaceAt computes, to the bit.
+struct ConstantMaterial {
+  BsdfParams bsdf;  // as seen from the front (surfaceAt inverts eta on a volume's back)
+  glm::vec3 emission[2]{glm::vec3(0.0f), glm::vec3(0.0f)};  // to a viewer on the back, front
+};
+class MaterialTable {
+ public:
+  MaterialTable() = default;
+  explicit MaterialTable(const Scene& scene);
+  // Null for a textured material (its inputs vary over its surface).
+  const ConstantMaterial* constantOf(size_t material) const {
+    return constant_[material] ? &constants_[material] : nullptr;
+  }
+
+ private:
+  std::vector<ConstantMaterial> constants_;
+  std::vector<uint8_t> constant_;
+};
+
 // 'incoming' is the direction the ray travelled (towards the surface).
 SurfaceHit surfaceAt(const Scene& scene, uint32_t instance, uint32_t triangle, float b1, float b2,
                      const glm::vec3& incoming);
@@ -38,6 +62,9 @@ SurfaceHit surfaceEmissionAt(const Scene& scene, uint32_t instance, uint32_t tri
 // The same from a hit whose geometry is known (hitGeometry, or a batch's hitGeometries).
 SurfaceHit surfaceAt(const Scene& scene, const HitRef& hit, const HitGeometry& geometry,
                      const glm::vec3& incoming);
+// The same, taking an untextured material's inputs from 'materials' (built from 'scene').
+SurfaceHit surfaceAt(const Scene& scene, const MaterialTable& materials, const HitRef& hit,
+                     const HitGeometry& geometry, const glm::vec3& incoming);
 SurfaceHit surfaceEmissionAt(const Scene& scene, const HitRef& hit, const HitGeometry& geometry,
                              const glm::vec3& incoming);
 

@@ -72,9 +72,11 @@ TEST(HitRebuild, BatchesEqualOneByOneBitForBit) {
     const CameraRays rays(cam);
     const size_t n = g.visibility.size();
     std::vector<RebuiltHit> batch(n);
+    const MaterialTable materials(scene);  // the batch's; the one-by-one rebuild computes them
     // Two ranges, neither a multiple of 8 long, as the tracer's tasks split an image.
-    uint64_t outside = rebuildPrimaryHits(scene, g, rays, cam.pose.position, 0, 100, batch);
-    outside += rebuildPrimaryHits(scene, g, rays, cam.pose.position, 100, n,
+    uint64_t outside =
+        rebuildPrimaryHits(scene, materials, g, rays, cam.pose.position, 0, 100, batch);
+    outside += rebuildPrimaryHits(scene, materials, g, rays, cam.pose.position, 100, n,
                                   std::span(batch).subspan(100));  // pixel i's at i - 100
     uint64_t counted = 0, hits = 0;
     for (size_t i = 0; i < n; ++i) {

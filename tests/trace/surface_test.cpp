@@ -100,5 +100,73 @@ TEST(SurfaceAt, TheCoatTakesItsOwnNormalMapNotTheBases) {
   }
 }
 
+void expectSameBits(const SurfaceHit& a, const SurfaceHit& b) {
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.positionError, b.positionError);
+  EXPECT_EQ(a.geometricNormal, b.geometricNormal);
+  EXPECT_EQ(a.shadingNormal, b.shadingNormal);
+  EXPECT_EQ(a.emission, b.emission);
+  EXPECT_EQ(a.frontFace, b.frontFace);
+  const BsdfParams &p = a.bsdf, &q = b.bsdf;
+  EXPECT_EQ(p.baseColor, q.baseColor);
+  EXPECT_EQ(p.metallic, q.metallic);
+  EXPECT_EQ(p.roughness, q.roughness);
+  EXPECT_EQ(p.dielectricF0, q.dielectricF0);
+  EXPECT_EQ(p.dielectricF90, q.dielectricF90);
+  EXPECT_EQ(p.transmission, q.transmission);
+  EXPECT_EQ(p.eta, q.eta);
+  EXPECT_EQ(p.thinWalled, q.thinWalled);
+  EXPECT_EQ(p.sheenColor, q.sheenColor);
+  EXPECT_EQ(p.sheenRoughness, q.sheenRoughness);
+  EXPECT_EQ(p.clearcoat, q.clearcoat);
+  EXPECT_EQ(p.clearcoatRoughness, q.clearcoatRoughness);
+  EXPECT_EQ(p.coatNormal, q.coatNormal);
+}
+
+// The tracer takes an untextured material's inputs from a table built once per scene
+// (MaterialTable); they must be what surfaceAt computes at the hit, to the bit, on both
+// sides, for every kind of material (or the images change), and a textured material must
+// still be computed at the hit.
+TEST(MaterialTable, GivesSurfaceAtsInputsBitForBit) {
+  Scene s;
+  Texture t;  // a base colour gradient: the textured material varies over the square
+  t.name = "gradient";
+  t.width = t.height = 2;
+  t.rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 40, 80, 120, 255};
+  s.textures.push_back(t);
+  std::vector<Material> kinds(10, diffuseMaterial(glm::vec3(0.3f, 0.5f, 0.7f)));
+  kinds[1].metallicFactor = 0.8f, kinds[1].roughnessFactor = 0.35f;
+  kinds[2].ior = 1.33f, kinds[2].specularFactor = 0.6f,
+  kinds[2].specularColorFactor = {1, .5f, .2f};
+  kinds[3].transmissionFactor = 1.0f, kinds[3].thicknessFactor = 0.1f, kinds[3].ior = 1.45f;
+  kinds[4].sheenColorFactor = {0.9f, 0.2f, 0.4f}, kinds[4].sheenRoughnessFactor = 0.5f;
+  kinds[5].clearcoatFactor = 0.7f, kinds[5].clearcoatRoughnessFactor = 0.1f;
+  kinds[6].unlit = true;
+  kinds[7].emissiveFactor = {2.0f, 1.0f, 0.5f}, kinds[7].emissiveStrength = 3.0f;
+  kinds[8] = kinds[7], kinds[8].doubleSided = true;
+  kinds[9].baseColorTexture.texture = 0;
+  s.materials = kinds;
+  const glm::mat4 transform =  // far away, rotated and scaled: every operation rounds
+      glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {-803.7f, 12.1f, 55.3f}), 0.7f,
+                             glm::normalize(glm::vec3(1, 2, 3))),
+                 glm::vec3(1.7f, 0.6f, 2.3f));
+  for (int material = 0; material < int(s.materials.size()); ++material)
+    addSquare(s, 1.3f, material, transform);
+  const MaterialTable table(s);
+  for (size_t m = 0; m < s.materials.size(); ++m)
+    EXPECT_EQ(table.constantOf(m) == nullptr, m == 9) << m;
+  const glm::vec3 normal = glm::normalize(glm::vec3(glm::transpose(glm::inverse(transform))[2]));
+  for (uint32_t instance = 0; instance < s.instances.size(); ++instance)
+    for (float side : {-1.0f, 1.0f}) {  // front and back hits
+      SCOPED_TRACE(::testing::Message() << "material " << instance << " side " << side);
+      const glm::vec3 incoming = glm::normalize(side * normal + glm::vec3(0.1f, -0.2f, 0.05f));
+      for (int k = 0; k < 8; ++k) {
+        const HitRef ref{instance, uint32_t(k % 2), 0.05f + 0.1f * float(k), 0.4f};
+        const HitGeometry g = hitGeometry(s, ref);
+        expectSameBits(surfaceAt(s, table, ref, g, incoming), surfaceAt(s, ref, g, incoming));
+      }
+    }
+}
+
 }  // namespace
 }  // namespace photovr
