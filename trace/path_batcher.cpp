@@ -14,7 +14,7 @@ void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
   ++pixels_.back().samples;
   if (reuse) {
     addSample(-1, int32_t(reused_.size()), hit.emission);
-    startPath(reused_.emplace_back(), hit, -dir, counters, nullptr, reuse);
+    startReusedSample(reused_.emplace_back(), hit, -dir, *reuse);
     reusedFrom_.push_back({counters, reuse});
     return;
   }

@@ -80,6 +80,12 @@ PathState startPath(const SurfaceHit& hit, const glm::vec3& wo, const SampleCoun
 void startPath(PathState& path, const SurfaceHit& hit, const glm::vec3& wo,
                const SampleCounters& counters, FirstBounce* record = nullptr,
                const FirstBounce* reuse = nullptr);
+// startPath for a reused right sample that finishReusedSamples shades at its first vertex:
+// without the sampler, as it draws the left's recorded numbers (reuse.numbers); one that
+// needs a ray is started again, whole, by startPath. (Copying the sampler was the first read
+// of the left's record, and half of startPath's time waited on it: perf annotate.)
+void startReusedSample(PathState& path, const SurfaceHit& hit, const glm::vec3& wo,
+                       const FirstBounce& reuse);
 // The draws a vertex at 'depth' makes (drawVertexNumbers, drawBatchNumbers).
 VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).

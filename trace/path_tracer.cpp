@@ -281,6 +281,13 @@ void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
   }
 }
 
+void startReusedSample(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
+                       const FirstBounce& reuse) {
+  p.hit = hit;
+  p.wo = wo;
+  p.reuse = &reuse;
+}
+
 VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {
   return {!ctx.lights.empty(), int(depth) < ctx.settings.maxBounces &&
                                    int(depth) + 1 >= ctx.settings.russianRouletteDepth};
