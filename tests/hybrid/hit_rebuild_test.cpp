@@ -10,6 +10,7 @@
 #include <span>
 
 #include "core/builtin_scenes.h"
+#include "tests/trace/surface_bits.h"
 #include "trace/embree_scene.h"
 
 namespace photovr {
@@ -19,17 +20,8 @@ void expectSameBits(const RebuiltHit& a, const RebuiltHit& b, size_t i) {
   EXPECT_EQ(a.direction, b.direction) << i;
   EXPECT_EQ(a.t, b.t) << i;
   EXPECT_EQ(a.outside, b.outside) << i;
-  const SurfaceHit &s = a.surface, &o = b.surface;
-  EXPECT_EQ(s.position, o.position) << i;
-  EXPECT_EQ(s.positionError, o.positionError) << i;
-  EXPECT_EQ(s.geometricNormal, o.geometricNormal) << i;
-  EXPECT_EQ(s.shadingNormal, o.shadingNormal) << i;
-  EXPECT_EQ(s.emission, o.emission) << i;
-  EXPECT_EQ(s.bsdf.baseColor, o.bsdf.baseColor) << i;
-  EXPECT_EQ(s.bsdf.roughness, o.bsdf.roughness) << i;
-  EXPECT_EQ(s.instance, o.instance) << i;
-  EXPECT_EQ(s.triangle, o.triangle) << i;
-  EXPECT_EQ(s.frontFace, o.frontFace) << i;
+  SCOPED_TRACE(::testing::Message() << "pixel " << i);
+  testing::expectSameBits(a.surface, b.surface);
 }
 
 // Pixel i's record: Embree's hit of its own ray (what the rasterizer records), the

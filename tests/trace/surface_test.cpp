@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/trace/surface_bits.h"
 #include "tests/trace/trace_test_util.h"
 
 namespace photovr {
@@ -100,29 +101,6 @@ TEST(SurfaceAt, TheCoatTakesItsOwnNormalMapNotTheBases) {
   }
 }
 
-void expectSameBits(const SurfaceHit& a, const SurfaceHit& b) {
-  EXPECT_EQ(a.position, b.position);
-  EXPECT_EQ(a.positionError, b.positionError);
-  EXPECT_EQ(a.geometricNormal, b.geometricNormal);
-  EXPECT_EQ(a.shadingNormal, b.shadingNormal);
-  EXPECT_EQ(a.emission, b.emission);
-  EXPECT_EQ(a.frontFace, b.frontFace);
-  const BsdfParams &p = a.bsdf, &q = b.bsdf;
-  EXPECT_EQ(p.baseColor, q.baseColor);
-  EXPECT_EQ(p.metallic, q.metallic);
-  EXPECT_EQ(p.roughness, q.roughness);
-  EXPECT_EQ(p.dielectricF0, q.dielectricF0);
-  EXPECT_EQ(p.dielectricF90, q.dielectricF90);
-  EXPECT_EQ(p.transmission, q.transmission);
-  EXPECT_EQ(p.eta, q.eta);
-  EXPECT_EQ(p.thinWalled, q.thinWalled);
-  EXPECT_EQ(p.sheenColor, q.sheenColor);
-  EXPECT_EQ(p.sheenRoughness, q.sheenRoughness);
-  EXPECT_EQ(p.clearcoat, q.clearcoat);
-  EXPECT_EQ(p.clearcoatRoughness, q.clearcoatRoughness);
-  EXPECT_EQ(p.coatNormal, q.coatNormal);
-}
-
 // The tracer takes an untextured material's inputs from a table built once per scene
 // (MaterialTable); they must be what surfaceAt computes at the hit, to the bit, on both
 // sides, for every kind of material (or the images change), and a textured material must
@@ -163,7 +141,8 @@ TEST(MaterialTable, GivesSurfaceAtsInputsBitForBit) {
       for (int k = 0; k < 8; ++k) {
         const HitRef ref{instance, uint32_t(k % 2), 0.05f + 0.1f * float(k), 0.4f};
         const HitGeometry g = hitGeometry(s, ref);
-        expectSameBits(surfaceAt(s, table, ref, g, incoming), surfaceAt(s, ref, g, incoming));
+        testing::expectSameBits(surfaceAt(s, table, ref, g, incoming),
+                                surfaceAt(s, ref, g, incoming));
       }
     }
 }
