@@ -4,7 +4,10 @@
 // 1. Tracer time per turn at 1 spp, 8 bounces (hybrid: rebuild + trace; pt: whole paths): of
 //    the eye traced first and of the second, which reuses its paths (with reuse on the eyes
 //    take turns to go first; off: left, right), median of --repeats frames, on and off
-//    alternating; the share of the second eye's paths that reused the first's.
+//    alternating; the share of the second eye's paths that reused the first's. Also, with
+//    reuse on, the same frame traced again right after (warm): in a frame the first eye
+//    finds the caches the G-buffer pass left (llvmpipe draws it on these cores), the second
+//    the ones the first left; the warm trace shows the ratio without that difference.
 // 2. Equal-time quality (hybrid): --frames frames with reuse off take a tracer time T; with
 //    reuse on, frames are traced until their tracer time reaches T; --seeds times. Per-eye relMSE
 //    and trimmed relMSE (core/error_metrics.h) of each mean against a converged pt reference
@@ -59,6 +62,7 @@ struct EyeTimes {
 struct Row {
   std::string scene;
   EyeTimes hybridOff, hybridOn, ptOn;
+  std::array<double, 2> hybridWarmMs{};  // reuse on, the frame traced again right after
   std::array<double, 2> ptOffMs{};
   int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
   double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
@@ -89,21 +93,31 @@ TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 
 // Hybrid: tracer times per turn on and off, alternating frame by frame.
 void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
   std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][turn]
+  std::array<std::vector<double>, 2> warm;               // [turn], reuse on
+  std::array<gl::GBufferImage, 2> g;
   std::array<uint64_t, 2> paths{}, reused{}, ownBounces{};
   for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of both
     for (int on = 0; on < 2; ++on) {
       r.setSettings(settingsWith(r, on == 1));
       FrameTimes t;
       const uint32_t f = uint32_t(std::max(k, 0));
-      r.recycle(r.render(eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol), 2, f, &t));
+      const auto eyes = eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol);
+      r.recycle(r.render(eyes, 2, f, &t));
       if (k < 0) continue;
       for (int e = 0; e < 2; ++e) ms[on][e].push_back(t.turnTraceMs[e]);
+      if (on == 1) {  // the same G-buffer read back again, then the frame traced again
+        FrameTimes w;
+        r.readGBuffer(2, g, w);
+        r.recycle(r.trace(g, eyes, 2, f, r.traceContext().settings, w, {}));
+        for (int e = 0; e < 2; ++e) warm[e].push_back(w.turnTraceMs[e]);
+      }
       paths[on] += t.turnPaths[1], reused[on] += t.turnReusedPaths[1];
       ownBounces[on] += t.turnOwnBounces[1];
     }
   for (int e = 0; e < 2; ++e) {
     row.hybridOff.ms[e] = median(ms[0][e]);
     row.hybridOn.ms[e] = median(ms[1][e]);
+    row.hybridWarmMs[e] = median(warm[e]);
   }
   row.hybridOn.reusedShare = double(reused[1]) / double(std::max<uint64_t>(paths[1], 1));
   row.hybridOn.ownBounceShare = double(ownBounces[1]) / double(std::max<uint64_t>(reused[1], 1));
@@ -273,11 +287,12 @@ void print(const Row& r, std::ofstream& csv) {
   const auto ratio = [](const std::array<double, 2>& ms) { return ms[1] / ms[0]; };
   std::printf(
       "%-8s hybrid tracer ms, first/second eye: off %6.1f/%6.1f, on %6.1f/%6.1f (second/first "
-      "%.2f, reused %.3f, %.3f of those with an own bounce) | pt off %6.1f/%6.1f, on "
-      "%6.1f/%6.1f (second/first %.2f, reused %.3f)\n",
+      "%.2f, reused %.3f, %.3f of those with an own bounce; traced again warm %.1f/%.1f, %.2f) "
+      "| pt off %6.1f/%6.1f, on %6.1f/%6.1f (second/first %.2f, reused %.3f)\n",
       r.scene.c_str(), r.hybridOff.ms[0], r.hybridOff.ms[1], r.hybridOn.ms[0], r.hybridOn.ms[1],
-      ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.hybridOn.ownBounceShare, r.ptOffMs[0],
-      r.ptOffMs[1], r.ptOn.ms[0], r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
+      ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.hybridOn.ownBounceShare, r.hybridWarmMs[0],
+      r.hybridWarmMs[1], ratio(r.hybridWarmMs), r.ptOffMs[0], r.ptOffMs[1], r.ptOn.ms[0],
+      r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
   std::printf(
       "         %s: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
       "%.4f/%.4f, on %.4f/%.4f (off/on %.2f/%.2f); trimmed off/on %.2f/%.2f\n",
@@ -296,7 +311,8 @@ void print(const Row& r, std::ofstream& csv) {
       << ',' << r.framesOff << ',' << r.framesOn << ',' << r.relMseOff[0] << ',' << r.relMseOff[1]
       << ',' << r.relMseOn[0] << ',' << r.relMseOn[1] << ',' << r.trimmedOff[0] << ','
       << r.trimmedOff[1] << ',' << r.trimmedOn[0] << ',' << r.trimmedOn[1] << ','
-      << r.correlationOff << ',' << r.correlationOn << '\n';
+      << r.correlationOff << ',' << r.correlationOn << ',' << r.hybridWarmMs[0] << ','
+      << r.hybridWarmMs[1] << ',' << ratio(r.hybridWarmMs) << '\n';
 }
 
 const char* const kUsage =
@@ -333,7 +349,8 @@ int run(const Options& o) {
          "pt_off_second_ms,pt_on_first_ms,pt_on_second_ms,pt_second_over_first,pt_reused_share,"
          "frames_off,frames_on,relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,"
          "trimmed_off_left,trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
-         "correlation_on\n";
+         "correlation_on,hybrid_on_warm_first_ms,hybrid_on_warm_second_ms,"
+         "hybrid_warm_second_over_first\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
