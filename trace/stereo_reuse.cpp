@@ -63,6 +63,12 @@ bool wideAgainstViews(const BsdfParams& bsdf, const glm::vec3& toLeft, const glm
 
 }  // namespace
 
+bool mirrorLike(const BsdfParams& bsdf) {
+  if (!(bsdf.roughness < kReuseMinRoughness)) return false;
+  const glm::vec3 f0 = glm::mix(bsdf.dielectricF0, bsdf.baseColor, bsdf.metallic);
+  return luminance(f0) >= luminance(diffuseAlbedo(bsdf));
+}
+
 bool reusesWhole(const FirstBounce& b, const SurfaceHit& right, const BsdfVertex& rightVertex,
                  const glm::vec3& wo) {
   return b.woAbove && b.normal == right.shadingNormal &&
@@ -173,6 +179,7 @@ const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& stand
   // A sample the left does not record has neither a partner nor the left's numbers.
   if (sample >= left.stride || standing.pixel == kNoLeftPixel) return nullptr;
   if (leftPixel) *leftPixel = standing.pixel;
+  if (mirrorLike(hit.bsdf)) return nullptr;
   // Where that sample is another surface (an edge, a thin object), none: a neighbour's
   // sample of this surface would give the right pixel another pixel's sequence in those
   // frames, and its own path draws this left pixel's numbers instead (ownPathCounters).
