@@ -207,7 +207,8 @@ constexpr float kPartnerPixels = 1.5f;
 // vertex (a glossy lobe, a mirror, a smooth coat on a diffuse base) is split like a tilted
 // one: its thin lobe where the left's does not cover it is its own to trace, and its
 // diffuse base is reused (spheres: 99 % of the right eye's samples reused against 94 % when
-// smooth vertices traced all their paths themselves).
+// smooth vertices traced all their paths themselves; 96 % since mirror-like ones, below,
+// have no partner).
 constexpr float kReuseMinRoughness = 0.1f;
 
 // A right vertex whose reflection is mostly a mirror-like lobe (roughness under

@@ -599,7 +599,8 @@ Environment checkerSky() {
   return e;
 }
 
-// Smooth vertices reuse too (ReuseSplit without 'whole'): seen from 10 degrees apart (the
+// Smooth vertices reuse too (ReuseSplit without 'whole'; in frames a mirror-like one has no
+// partner, AMirrorLikeVertex... below): seen from 10 degrees apart (the
 // eyes' angle at ~0.35 m), a mirror's peak, a smooth coat's peak over its diffuse base and
 // a glossy metal's lobe (alpha 0.04, under the views' 0.17 rad) are not where the left's
 // are, and must be the right sample's own to trace, while the rest is reused. Compared with
