@@ -111,7 +111,8 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
             stereo.looksAcross() ? partnerOrOwnNumbers(stereo, hit, standing[i - r.begin()], s, own)
                                  : nullptr;
         tileReused += partner != nullptr;
-        batcher.addHit(hit, dir, own, record, partner);
+        batcher.addHit(hit, dir, own, record, partner,
+                       partner && leftShadowEdge(*stereo.reuse, *partner));
       }
       tilePaths += spp;
       ++tileTraced;

@@ -76,7 +76,7 @@ void setShadowRay(BatchRay& ray, const SurfaceHit& hit, const LightSample& ls) {
 // where the left traced that shadow ray, its answer stands for the right's
 // (trace/stereo_reuse.h, "The approximations").
 bool leftShadowAnswers(const PathState& p) {
-  return p.reuse && p.reuse->shadowTraced;
+  return p.reuse && p.reuse->shadowTraced && !p.atLeftShadowEdge;
 }
 
 // Next-event estimation's light sample at the path's vertex, made before the BSDF is
@@ -282,7 +282,8 @@ void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
 }
 
 void startReusedSample(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
-                       const FirstBounce& reuse) {
+                       const FirstBounce& reuse, bool atLeftShadowEdge) {
+  p.atLeftShadowEdge = atLeftShadowEdge;
   p.hit = hit;
   p.wo = wo;
   p.reuse = &reuse;

@@ -107,7 +107,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
                 : nullptr;
         counts.reused += partner != nullptr;
         ++counts.paths;
-        batcher.addHit(hit, dir, counters, record, partner);
+        batcher.addHit(hit, dir, counters, record, partner,
+                       partner && leftShadowEdge(*stereo.reuse, *partner));
       }
     }
   batcher.flush(ctx, img, counts.traced);

@@ -187,6 +187,22 @@ const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& stand
                    kPartnerPixels * kPartnerPixels * standing.footprint2);
 }
 
+bool leftShadowEdge(const StereoPaths& left, const FirstBounce& b) {
+  if (!b.shadowTraced || !b.light.isDelta || !b.light.atInfinity()) return false;
+  const size_t slot = size_t(&b - left.bounces.data());
+  const size_t stride = left.stride, width = size_t(left.camera.width);
+  const size_t x = (slot / stride) % width;
+  for (const size_t neighbour :
+       {x > 0 ? slot - stride : slot, x + 1 < width ? slot + stride : slot}) {
+    if (neighbour == slot || left.stamps[neighbour] != left.generation) continue;
+    const FirstBounce& n = left.bounces[neighbour];
+    if (n.shadowTraced && n.light.isDelta && n.light.direction == b.light.direction &&
+        n.shadowBlocked != b.shadowBlocked)
+      return true;
+  }
+  return false;
+}
+
 const FirstBounce* findPartner(const StereoPaths& left, const SurfaceHit& hit,
                                const RightSample& right, uint32_t* leftPixel) {
   return partnerIn(left, standingPixelOf(left, hit, right), right.sample, hit, leftPixel);

@@ -287,6 +287,20 @@ void prefetchPartner(const StereoPaths& left, const StandingPixel& standing);
 const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& standing,
                              uint32_t sample, const SurfaceHit& hit, uint32_t* leftPixel = nullptr);
 
+// Whether the left sample 'b' (a record of 'left' this frame) is at the edge of a shadow
+// its NEE ray found: it aimed at a delta light at infinity (the sun), and a horizontal
+// neighbour's sample of the same index aimed at that light too and got the other answer. A
+// right sample reusing 'b' then traces its own shadow ray instead of taking b's answer
+// (leftShadowAnswers in trace/path_tracer.cpp): the edge would otherwise sit where the
+// left's samples put it, moved by up to the partner's distance, a bias no number of frames
+// removes (spheres' floor: 5-6 % of its trimmed relMSE at 32 frames, docs/MEASUREMENTS.md).
+// A sun shadow's edge between x1L and x1R, which are within kPartnerPixels footprints and
+// mostly apart along the row (the eyes' disparity), lies between b and a row neighbour
+// unless it runs along the row. Neighbours that sampled another light, or the environment
+// or an area light (whose points differ from sample to sample, so their answers differ by
+// chance), do not count: there the left's answer stands, as before.
+bool leftShadowEdge(const StereoPaths& left, const FirstBounce& b);
+
 // The numbers a right sample without a partner draws for its own path: the left eye's at
 // 'leftPixel' (findPartner's), whose sample a right sample of the same pixel reuses in
 // other frames, so that the right pixel keeps one Sobol sequence over the frames (at an
