@@ -112,7 +112,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
                                  : nullptr;
         tileReused += partner != nullptr;
         batcher.addHit(hit, dir, own, record, partner,
-                       partner && leftShadowEdge(*stereo.reuse, *partner));
+                       tracesOwnShadowRay(ctx.settings, stereo, partner));
       }
       tilePaths += spp;
       ++tileTraced;

@@ -10,11 +10,11 @@ void PathBatcher::beginPixel(size_t pixel) {
 
 void PathBatcher::addHit(const SurfaceHit& hit, const glm::vec3& dir,
                          const SampleCounters& counters, FirstBounce* record,
-                         const FirstBounce* reuse, bool atLeftShadowEdge) {
+                         const FirstBounce* reuse, bool ownShadowRay) {
   ++pixels_.back().samples;
   if (reuse) {
     addSample(-1, int32_t(reused_.size()), hit.emission);
-    startReusedSample(reused_.emplace_back(), hit, -dir, *reuse, atLeftShadowEdge);
+    startReusedSample(reused_.emplace_back(), hit, -dir, *reuse, ownShadowRay);
     reusedFrom_.push_back({counters, reuse});
     return;
   }
@@ -47,7 +47,7 @@ void PathBatcher::finishReused(const TraceContext& ctx) {
     s.start = int32_t(paths_.size());
     const ReusedFrom& from = reusedFrom_[size_t(s.finished)];
     startPath(paths_.emplace_back(), p.hit, p.wo, from.counters, nullptr, from.reuse);
-    paths_.back().atLeftShadowEdge = p.atLeftShadowEdge;
+    paths_.back().ownShadowRay = p.ownShadowRay;
     s.finished = -1;
   }
 }

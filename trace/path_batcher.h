@@ -23,11 +23,11 @@ class PathBatcher {
   void beginPixel(size_t pixel);
   // A sample whose primary ray along 'dir' hit 'hit': its path is continued (stereo reuse:
   // recording its first bounce in 'record', or reusing the left sample 'reuse', finished at
-  // the flush without a path where it needs no ray; 'atLeftShadowEdge': leftShadowEdge of
-  // 'reuse').
+  // the flush without a path where it needs no ray; 'ownShadowRay': it traces its own
+  // shadow ray, tracesOwnShadowRay).
   void addHit(const SurfaceHit& hit, const glm::vec3& dir, const SampleCounters& counters,
               FirstBounce* record = nullptr, const FirstBounce* reuse = nullptr,
-              bool atLeftShadowEdge = false);
+              bool ownShadowRay = false);
   // A sample whose primary ray left the scene and saw 'environment'.
   void addMiss(const glm::vec3& environment);
   bool full() const { return samples_.size() >= kBatchPaths; }

@@ -56,9 +56,9 @@ struct PathState {
   // 'record'; a right eye's path that reuses 'reuse' stops after its first vertex.
   FirstBounce* record = nullptr;
   const FirstBounce* reuse = nullptr;
-  bool atLeftShadowEdge = false;  // reuse: leftShadowEdge, its own shadow ray then
-  glm::vec3 weight0{0.0f};        // record: the first bounce's throughput f cos / pdf ...
-  glm::vec3 before0{0.0f};        // ... and the radiance gathered up to and with Le(x2)
+  bool ownShadowRay = false;  // reuse: it traces its own shadow ray (tracesOwnShadowRay)
+  glm::vec3 weight0{0.0f};    // record: the first bounce's throughput f cos / pdf ...
+  glm::vec3 before0{0.0f};    // ... and the radiance gathered up to and with Le(x2)
 };
 
 // A shadow ray and what it adds to the path's lobes if nothing blocks it.
@@ -86,7 +86,7 @@ void startPath(PathState& path, const SurfaceHit& hit, const glm::vec3& wo,
 // needs a ray is started again, whole, by startPath. (Copying the sampler was the first read
 // of the left's record, and half of startPath's time waited on it: perf annotate.)
 void startReusedSample(PathState& path, const SurfaceHit& hit, const glm::vec3& wo,
-                       const FirstBounce& reuse, bool atLeftShadowEdge = false);
+                       const FirstBounce& reuse, bool ownShadowRay = false);
 // The draws a vertex at 'depth' makes (drawVertexNumbers, drawBatchNumbers).
 VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth);
 // 'u': the vertex's numbers, drawVertexNumbers(path.sampler, path.depth, vertexDraws(...)).

@@ -74,9 +74,10 @@ void setShadowRay(BatchRay& ray, const SurfaceHit& hit, const LightSample& ls) {
 
 // A reused right sample aims its NEE at the left sample's light point (the same numbers);
 // where the left traced that shadow ray, its answer stands for the right's
-// (trace/stereo_reuse.h, "The approximations").
+// (trace/stereo_reuse.h, "The approximations"), but where it traces its own
+// (tracesOwnShadowRay).
 bool leftShadowAnswers(const PathState& p) {
-  return p.reuse && p.reuse->shadowTraced && !p.atLeftShadowEdge;
+  return p.reuse && p.reuse->shadowTraced && !p.ownShadowRay;
 }
 
 // Next-event estimation's light sample at the path's vertex, made before the BSDF is
@@ -87,13 +88,14 @@ void sampleLight(const TraceContext& ctx, const PathState& p, const VertexNumber
   vs.lit = false;
   if (ctx.lights.empty()) return;
   // A reused right sample draws the left's numbers: a light at infinity gives the left's
-  // sample again, so it is taken from the record (stereo_reuse.h).
+  // sample again, so it is taken from the record (stereo_reuse.h); a punctual one is
+  // recorded for leftShadowEdge and sampled again from here.
   LightSample& ls = vs.light;
-  if (p.reuse && p.reuse->light.valid())
+  if (p.reuse && p.reuse->light.valid() && p.reuse->light.atInfinity())
     ls = p.reuse->light;
   else
     ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint, ls);
-  if (p.record && p.depth == 0 && ls.atInfinity()) p.record->light = ls;
+  if (p.record && p.depth == 0 && (ls.atInfinity() || ls.isDelta)) p.record->light = ls;
   if (!ls.valid()) return;
   vs.wiL = frame.toLocal(ls.direction);
   vs.lit = sameSide(ls.direction, p.hit, vs.wiL);
@@ -282,8 +284,8 @@ void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
 }
 
 void startReusedSample(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
-                       const FirstBounce& reuse, bool atLeftShadowEdge) {
-  p.atLeftShadowEdge = atLeftShadowEdge;
+                       const FirstBounce& reuse, bool ownShadowRay) {
+  p.ownShadowRay = ownShadowRay;
   p.hit = hit;
   p.wo = wo;
   p.reuse = &reuse;

@@ -26,8 +26,12 @@ struct TraceSettings {
   SamplerKind sampler = SamplerKind::Sobol;  // --sampler
   BatchCall batchCall = BatchCall::Stream;   // how the batched tracer hands rays to Embree
   bool stereoReuse = false;  // a stereo frame's second eye reuses the first's (--stereo-reuse)
-  WorkSkips skips;           // work the scene does not need (work_skips.h); the renderers build
-                             // their EmbreeScene and LightSet with the same skips
+  // Stereo reuse: every reused sample traces its own NEE shadow ray instead of taking the
+  // left's answer (trace/stereo_reuse.h, "The approximations"): that approximation off, to
+  // measure it (bench/bench_stereo.cpp, tests/trace/stereo_reuse_test.cpp).
+  bool reusedOwnShadowRays = false;
+  WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
+                    // their EmbreeScene and LightSet with the same skips
 };
 
 // Everything a path needs, built once per scene.
@@ -37,6 +41,14 @@ struct TraceContext {
   const LightSet& lights;
   TraceSettings settings;
 };
+
+// Whether a right sample reusing 'partner' (a record of 'role.reuse'; null: none) traces its
+// own shadow ray instead of taking the partner's answer: at the edge of a punctual light's
+// shadow (leftShadowEdge), or everywhere with TraceSettings::reusedOwnShadowRays.
+inline bool tracesOwnShadowRay(const TraceSettings& s, const StereoRole& role,
+                               const FirstBounce* partner) {
+  return partner && (s.reusedOwnShadowRays || leftShadowEdge(*role.reuse, *partner));
+}
 
 struct PathResult {
   glm::vec3 radiance{0.0f};  // reflected radiance towards wo (emission of the start excluded)

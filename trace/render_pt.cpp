@@ -108,7 +108,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         counts.reused += partner != nullptr;
         ++counts.paths;
         batcher.addHit(hit, dir, counters, record, partner,
-                       partner && leftShadowEdge(*stereo.reuse, *partner));
+                       tracesOwnShadowRay(ctx.settings, stereo, partner));
       }
     }
   batcher.flush(ctx, img, counts.traced);

@@ -187,8 +187,26 @@ const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& stand
                    kPartnerPixels * kPartnerPixels * standing.footprint2);
 }
 
+namespace {
+
+// Whether two left samples' NEE aimed at one punctual light: the same direction for one at
+// infinity (the same sample to the bit), the same point for one at a finite distance (each
+// computed from its own x1, equal to float rounding: a few ulps of the distance and of x1's
+// coordinates; two punctual lights at one point cast the same shadows).
+bool sameDeltaLight(const FirstBounce& a, const FirstBounce& b) {
+  const LightSample &la = a.light, &lb = b.light;
+  if (!lb.isDelta || la.atInfinity() != lb.atInfinity()) return false;
+  if (la.atInfinity()) return la.direction == lb.direction;
+  const glm::vec3 d =
+      (a.position + la.direction * la.distance) - (b.position + lb.direction * lb.distance);
+  const float tolerance = 1e-4f * (la.distance + glm::length(a.position));
+  return glm::dot(d, d) <= tolerance * tolerance;
+}
+
+}  // namespace
+
 bool leftShadowEdge(const StereoPaths& left, const FirstBounce& b) {
-  if (!b.shadowTraced || !b.light.isDelta || !b.light.atInfinity()) return false;
+  if (!b.shadowTraced || !b.light.isDelta) return false;
   const size_t slot = size_t(&b - left.bounces.data());
   const size_t stride = left.stride, width = size_t(left.camera.width);
   const size_t x = (slot / stride) % width;
@@ -196,9 +214,7 @@ bool leftShadowEdge(const StereoPaths& left, const FirstBounce& b) {
        {x > 0 ? slot - stride : slot, x + 1 < width ? slot + stride : slot}) {
     if (neighbour == slot || left.stamps[neighbour] != left.generation) continue;
     const FirstBounce& n = left.bounces[neighbour];
-    if (n.shadowTraced && n.light.isDelta && n.light.direction == b.light.direction &&
-        n.shadowBlocked != b.shadowBlocked)
-      return true;
+    if (n.shadowTraced && n.shadowBlocked != b.shadowBlocked && sameDeltaLight(b, n)) return true;
   }
   return false;
 }

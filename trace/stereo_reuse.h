@@ -44,11 +44,14 @@
 // within kPartnerPixels footprints of each other, so only what is about that close to the
 // surface (contact, corners) or to a shadow's edge differs: the incident light is blurred by
 // that distance, and a shadow's edge moves by at most that distance (as the left eye samples
-// it) instead of being traced again. Measured in tests/trace/stereo_reuse_test.cpp (per-region
-// z-test against the right eye's own paths; a sun's shadow edge on a wall: every pixel beyond
-// the edge's the same to the bit, the edge moved by 0.31 pixels where the bound is 2.99) and
-// bench/bench_stereo.cpp. The shadow ray was a sixth of a reused sample's time on spheres
-// (docs/MEASUREMENTS.md, "Stereo path reuse"). Reconnecting to x2 with the
+// it) instead of being traced again, except at a punctual light's shadow edge, where the
+// right sample traces its own (leftShadowEdge). Measured in tests/trace/stereo_reuse_test.cpp
+// (per-region z-test against the right eye's own paths; a square light's penumbra on a wall,
+// against every reused sample tracing its own shadow ray: every pixel beyond it the same to
+// rounding, the penumbra moved by 0.4 pixels per row where the bound is 2.99) and
+// bench/bench_stereo.cpp (the same comparison on every built-in scene: relMSE 3e-6 to 3e-4,
+// 1 % of atrium's error at 32 frames). The shadow ray was a sixth of a reused sample's time
+// on spheres (docs/MEASUREMENTS.md, "Stereo path reuse"). Reconnecting to x2 with the
 // area-measure Jacobian instead (exact geometry at x1R) was tried: its Jacobian
 // |cos th2R| |x2 - x1L|^2 / (|cos th2L| |x2 - x1R|^2) spikes where x2 is near x1 or seen at
 // grazing angles, and the right eye's relMSE at equal time came out 1.08x better than off on
@@ -92,7 +95,8 @@ struct FirstBounce {
   PathSampler sampler;     // the left path's numbers: the right sample's NEE draws them too
   VertexNumbers numbers;   // ... those its first vertex drew, which a reused sample draws again
   // The left path's light sample at x1L if it is a light at infinity, which the right
-  // sample's NEE, drawing the same numbers, would sample again to the bit; else invalid.
+  // sample's NEE, drawing the same numbers, would sample again to the bit, or a punctual
+  // light, which it samples again from x1R (leftShadowEdge compares its point); else invalid.
   LightSample light;
   // Whether the left path's NEE at x1L traced a shadow ray, and what it found: the right
   // sample, drawing the same numbers, aims at the same light point, and this answer stands
@@ -288,17 +292,20 @@ const FirstBounce* partnerIn(const StereoPaths& left, const StandingPixel& stand
                              uint32_t sample, const SurfaceHit& hit, uint32_t* leftPixel = nullptr);
 
 // Whether the left sample 'b' (a record of 'left' this frame) is at the edge of a shadow
-// its NEE ray found: it aimed at a delta light at infinity (the sun), and a horizontal
+// its NEE ray found: it aimed at a punctual light (the sun, a lamp), and a horizontal
 // neighbour's sample of the same index aimed at that light too and got the other answer. A
 // right sample reusing 'b' then traces its own shadow ray instead of taking b's answer
 // (leftShadowAnswers in trace/path_tracer.cpp): the edge would otherwise sit where the
 // left's samples put it, moved by up to the partner's distance, a bias no number of frames
 // removes (spheres' floor: 5-6 % of its trimmed relMSE at 32 frames, docs/MEASUREMENTS.md).
-// A sun shadow's edge between x1L and x1R, which are within kPartnerPixels footprints and
-// mostly apart along the row (the eyes' disparity), lies between b and a row neighbour
-// unless it runs along the row. Neighbours that sampled another light, or the environment
-// or an area light (whose points differ from sample to sample, so their answers differ by
-// chance), do not count: there the left's answer stands, as before.
+// A punctual light's shadow edge (one for every sample that aims at it) between x1L and x1R,
+// which are within kPartnerPixels footprints and mostly apart along the row (the eyes'
+// disparity), lies between b and a row neighbour unless it runs along the row. Neighbours
+// that sampled another light, or the environment or an area light (whose points differ
+// from sample to sample, so their answers differ by chance), do not count: there the left's
+// answer stands, as before. So the edge is found only where a neighbour picked the same
+// light: with one sun and a sky, most of the time; among atrium's four lamps, a quarter of
+// the lamps' bias went (bench_stereo's shadow answers; docs/MEASUREMENTS.md).
 bool leftShadowEdge(const StereoPaths& left, const FirstBounce& b);
 
 // The numbers a right sample without a partner draws for its own path: the left eye's at
