@@ -12,7 +12,13 @@
 //    reuse on, frames are traced until their tracer time reaches T; --seeds times. Per-eye relMSE
 //    and trimmed relMSE (core/error_metrics.h) of each mean against a converged pt reference
 //    (harness/reference_cache.h, --reference-spp).
-// 3. Stereo consistency: the correlation of the two eyes' relative noise (relativeNoise) at
+// 3. The left's shadow answers (trace/stereo_reuse.h, "The approximations"): reuse on with
+//    every reused sample tracing its own shadow ray instead (TraceSettings::
+//    reusedOwnShadowRays), the same numbers: the second eye's tracer time, timed with the
+//    others in 1, and the per-eye relMSE of the mean of --frames frames with the left's
+//    answers against that mean (seed 1): what the approximation moves, against the relMSE
+//    of the same mean against the reference.
+// 4. Stereo consistency: the correlation of the two eyes' relative noise (relativeNoise) at
 //    corresponding pixels (the right pixel's hit seen by the left pixel its projection lands
 //    in, trace/stereo_reuse.h's partner test), one-frame images, on and off.
 //
@@ -63,6 +69,8 @@ struct Row {
   std::string scene;
   EyeTimes hybridOff, hybridOn, ptOn;
   std::array<double, 2> hybridWarmMs{};  // reuse on, the frame traced again right after
+  double ownShadowSecondMs = 0.0;        // reuse on, own shadow rays: the second eye
+  std::array<double, 2> shadowAnswerRelMse{}, shadowAnswerRefRelMse{};  // 3. above
   std::array<double, 2> ptOffMs{};
   int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
   double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
@@ -83,22 +91,25 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 0) {
+TraceSettings settingsWith(const HybridRenderer& r, bool reuse, uint32_t seed = 0,
+                           bool ownShadowRays = false) {
   TraceSettings s = r.traceContext().settings;
   s.stereoReuse = reuse;
   s.seed = seed;
+  s.reusedOwnShadowRays = ownShadowRays;
   return s;
 }
 
-// Hybrid: tracer times per turn on and off, alternating frame by frame.
+// Hybrid: tracer times per turn off, on and on with own shadow rays, alternating frame by
+// frame.
 void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
-  std::array<std::array<std::vector<double>, 2>, 2> ms;  // [on][turn]
+  std::array<std::array<std::vector<double>, 2>, 3> ms;  // [off, on, own shadow rays][turn]
   std::array<std::vector<double>, 2> warm;               // [turn], reuse on
   std::array<gl::GBufferImage, 2> g;
-  std::array<uint64_t, 2> paths{}, reused{}, ownBounces{};
-  for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of both
-    for (int on = 0; on < 2; ++on) {
-      r.setSettings(settingsWith(r, on == 1));
+  std::array<uint64_t, 3> paths{}, reused{}, ownBounces{};
+  for (int k = -1; k < a.repeats; ++k)  // k = -1: warm-up of each
+    for (int on = 0; on < 3; ++on) {
+      r.setSettings(settingsWith(r, on > 0, 0, on == 2));
       FrameTimes t;
       const uint32_t f = uint32_t(std::max(k, 0));
       const auto eyes = eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol);
@@ -119,6 +130,7 @@ void timeHybrid(HybridRenderer& r, const View& view, const Args& a, Row& row) {
     row.hybridOn.ms[e] = median(ms[1][e]);
     row.hybridWarmMs[e] = median(warm[e]);
   }
+  row.ownShadowSecondMs = median(ms[2][1]);
   row.hybridOn.reusedShare = double(reused[1]) / double(std::max<uint64_t>(paths[1], 1));
   row.hybridOn.ownBounceShare = double(ownBounces[1]) / double(std::max<uint64_t>(reused[1], 1));
 }
@@ -130,6 +142,7 @@ void timePt(const TraceContext& base, const View& view, const Args& a, Row& row)
   uint64_t total = 0, reused = 0;
   std::array<std::array<EyeImage, 2>, 2> buffers;  // per setting and eye, as FramePipeline keeps
   TraceContext ctx = base;
+  ctx.settings.reusedOwnShadowRays = false;  // the left's answers, as timeHybrid's 'on'
   for (int k = -1; k < a.repeats; ++k)
     for (int on = 0; on < 2; ++on) {
       const uint32_t f = uint32_t(std::max(k, 0));
@@ -161,8 +174,8 @@ struct Accumulated {
   double tracerMs = 0.0;
 };
 Accumulated accumulate(HybridRenderer& r, const View& view, const Args& a, bool on, int frames,
-                       double budgetMs, uint32_t seed) {
-  r.setSettings(settingsWith(r, on, seed));
+                       double budgetMs, uint32_t seed, bool ownShadowRays = false) {
+  r.setSettings(settingsWith(r, on, seed, ownShadowRays));
   Accumulated acc;
   for (auto& m : acc.mean) m.assign(size_t(a.width) * a.height, glm::vec3(0.0f));
   while (frames > 0 ? acc.frames < frames : acc.tracerMs < budgetMs) {
@@ -276,6 +289,12 @@ void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, con
   }
   row.framesOff = a.frames;
   row.framesOn = (row.framesOn + a.seeds / 2) / a.seeds;
+  const Accumulated answers = accumulate(r, view, a, true, a.frames, 0.0, 1);
+  const Accumulated ownRays = accumulate(r, view, a, true, a.frames, 0.0, 1, true);
+  for (int e = 0; e < 2; ++e) {
+    row.shadowAnswerRelMse[e] = relMse(answers.mean[e], ownRays.mean[e]);
+    row.shadowAnswerRefRelMse[e] = relMse(answers.mean[e], ref.eyes[e]);
+  }
   const auto pairs = correspondingPixels(
       r.traceContext(), eyeCameras(view, a.width, a.height, 0, SamplerKind::Sobol));
   row.pairs = pairs.size();
@@ -301,6 +320,11 @@ void print(const Row& r, std::ofstream& csv) {
       r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
       r.trimmedOff[0] / r.trimmedOn[0], r.trimmedOff[1] / r.trimmedOn[1]);
   std::printf(
+      "         the left's shadow answers: second eye %.1f ms with own shadow rays; relMSE "
+      "L/R of %d frames against own rays %.2g/%.2g (against the reference %.4f/%.4f)\n",
+      r.ownShadowSecondMs, r.framesOff, r.shadowAnswerRelMse[0], r.shadowAnswerRelMse[1],
+      r.shadowAnswerRefRelMse[0], r.shadowAnswerRefRelMse[1]);
+  std::printf(
       "         noise correlation of the eyes at %zu corresponding pixels: off %.3f, "
       "on %.3f\n",
       r.pairs, r.correlationOff, r.correlationOn);
@@ -312,7 +336,9 @@ void print(const Row& r, std::ofstream& csv) {
       << ',' << r.relMseOn[0] << ',' << r.relMseOn[1] << ',' << r.trimmedOff[0] << ','
       << r.trimmedOff[1] << ',' << r.trimmedOn[0] << ',' << r.trimmedOn[1] << ','
       << r.correlationOff << ',' << r.correlationOn << ',' << r.hybridWarmMs[0] << ','
-      << r.hybridWarmMs[1] << ',' << ratio(r.hybridWarmMs) << '\n';
+      << r.hybridWarmMs[1] << ',' << ratio(r.hybridWarmMs) << ',' << r.ownShadowSecondMs << ','
+      << r.shadowAnswerRelMse[0] << ',' << r.shadowAnswerRelMse[1] << ','
+      << r.shadowAnswerRefRelMse[0] << ',' << r.shadowAnswerRefRelMse[1] << '\n';
 }
 
 const char* const kUsage =
@@ -325,7 +351,9 @@ const char* const kUsage =
     "reused; equal-time per-eye relMSE and trimmed relMSE (F\n"
     "frames off, 32, against as many as fit their tracer time on; means over K seeds, 4)\n"
     "against a pt reference of S spp (1024); the correlation of the eyes' relative noise at "
-    "corresponding pixels. --equal-frames: reuse on gets the F frames off gets (its error per\n"
+    "corresponding pixels; the bias of the left's shadow answers (reused samples tracing their\n"
+    "own shadow rays instead: time and relMSE). --equal-frames: reuse on gets the F frames off "
+    "gets (its error per\n"
     "frame, not per time).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
@@ -350,7 +378,9 @@ int run(const Options& o) {
          "frames_off,frames_on,relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,"
          "trimmed_off_left,trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
          "correlation_on,hybrid_on_warm_first_ms,hybrid_on_warm_second_ms,"
-         "hybrid_warm_second_over_first\n";
+         "hybrid_warm_second_over_first,hybrid_own_shadow_rays_second_ms,shadow_answer_relmse_left,"
+         "shadow_answer_relmse_right,shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_"
+         "right\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
