@@ -246,6 +246,32 @@ double partnerRowBound(const StereoRig& rig) {
   return kPartnerPixels * std::sqrt(1.0 + tx * tx + ty * ty);
 }
 
+// One eye's means 'a' against 'b' ('cam' its camera, 'lit' the lit wall's value): each
+// pixel whose centre meets the wall farther than 'band' + 3 pixels from kEdgeX (beyond the
+// jitter and a partner's distance) equal to float rounding (1e-5 of the lit value), and
+// each row's summed difference, in lit pixels; how many pixels differ at all.
+struct WallDifference {
+  std::vector<double> rows;
+  int pixels = 0;
+};
+WallDifference compareOffTheEdge(const EyeCamera& cam, const std::vector<double>& a,
+                                 const std::vector<double>& b, double lit, float band,
+                                 const std::string& what) {
+  const float margin = band + wallPixels(cam, 3.0f);
+  WallDifference d;
+  d.rows.assign(kWallH, 0.0);
+  for (int y = 0; y < kWallH; ++y)
+    for (int x = 0; x < kWallW; ++x) {
+      const size_t i = size_t(y) * kWallW + size_t(x);
+      d.rows[size_t(y)] += (a[i] - b[i]) / lit;
+      d.pixels += a[i] != b[i];
+      if (std::abs(wallX(cam, x, y) - kEdgeX) > margin) {
+        EXPECT_NEAR(a[i], b[i], 1e-5 * lit) << what << " pixel " << x << ", " << y;
+      }
+    }
+  return d;
+}
+
 // A reused sample's NEE aims at its partner's light point, and the partner's shadow ray
 // answers for it, except at the edge of a punctual light's shadow (leftShadowEdge: a row
 // neighbour of the partner, aiming at the same light, got the other answer), where it
@@ -278,26 +304,17 @@ TEST(StereoReuse, TheLeftsShadowAnswerIsNotTakenAtAPunctualLightsShadowEdge) {
     EXPECT_LT(rays[1], rays[0]) << name;  // the reused samples away from the edge: no shadow ray
     for (int e = 0; e < 2; ++e) {
       const EyeCamera cam = rig.eye(e == 0 ? Eye::Left : Eye::Right, kWallW, kWallH);
-      const float margin = wallPixels(cam, 3.0f);
       const std::vector<double>&off = mean[0][e], &on = mean[1][e];
       const double lit = *std::max_element(off.begin(), off.end());
       ASSERT_GT(lit, 0.5) << name;
+      const std::string what = std::string(name) + " eye " + std::to_string(e);
+      const WallDifference d = compareOffTheEdge(cam, on, off, lit, 0.0f, what);
       double worstRow = 0.0;  // in lit pixels
       for (int y = 0; y < kWallH; ++y) {
-        double rowDifference = 0.0;
-        for (int x = 0; x < kWallW; ++x) {
-          const size_t i = size_t(y) * kWallW + size_t(x);
-          rowDifference += on[i] - off[i];
-          if (std::abs(wallX(cam, x, y) - kEdgeX) > margin) {
-            EXPECT_NEAR(on[i], off[i], 1e-5 * lit)
-                << name << " eye " << e << " pixel " << x << ", " << y;
-          }
-        }
-        EXPECT_EQ(off[size_t(y) * kWallW], 0.0) << name << " row " << y;  // dark at the left
-        EXPECT_GT(off[size_t(y) * kWallW + kWallW - 1], 0.5 * lit) << name << " row " << y;
-        EXPECT_LE(std::abs(rowDifference), 1e-5 * lit * kWallW)
-            << name << " eye " << e << " row " << y;
-        worstRow = std::max(worstRow, std::abs(rowDifference) / lit);
+        EXPECT_EQ(off[size_t(y) * kWallW], 0.0) << what << " row " << y;  // dark at the left
+        EXPECT_GT(off[size_t(y) * kWallW + kWallW - 1], 0.5 * lit) << what << " row " << y;
+        EXPECT_LE(std::abs(d.rows[size_t(y)]), 1e-5 * kWallW) << what << " row " << y;
+        worstRow = std::max(worstRow, std::abs(d.rows[size_t(y)]));
       }
       std::printf(
           "  %s, eye %d: the edge moved by at most %.2g pixels in a row (without the "
@@ -352,23 +369,16 @@ TEST(StereoReuse, TheLeftsShadowAnswerMovesAPenumbraByAtMostThePartnersDistance)
   int differing = 0;
   for (int e = 0; e < 2; ++e) {
     const EyeCamera cam = rig.eye(e == 0 ? Eye::Left : Eye::Right, kWallW, kWallH);
-    const float margin = wallPixels(cam, 3.0f);
     const std::vector<double>&left = mean[0][e], &own = mean[1][e];
     const double lit = *std::max_element(own.begin(), own.end());
     ASSERT_GT(lit, 0.5);
+    const std::string what = "eye " + std::to_string(e);
+    const WallDifference d = compareOffTheEdge(cam, left, own, lit, kPenumbraHalf, what);
+    differing += d.pixels;
     double worstRow = 0.0;  // in lit pixels
     for (int y = 0; y < kWallH; ++y) {
-      double rowDifference = 0.0;
-      for (int x = 0; x < kWallW; ++x) {
-        const size_t i = size_t(y) * kWallW + size_t(x);
-        rowDifference += left[i] - own[i];
-        differing += left[i] != own[i];
-        if (std::abs(wallX(cam, x, y) - kEdgeX) > kPenumbraHalf + margin) {
-          EXPECT_NEAR(left[i], own[i], 1e-5 * lit) << "eye " << e << " pixel " << x << ", " << y;
-        }
-      }
-      EXPECT_LE(std::abs(rowDifference), lit * partnerRowBound(rig)) << "eye " << e << " row " << y;
-      worstRow = std::max(worstRow, std::abs(rowDifference) / lit);
+      EXPECT_LE(std::abs(d.rows[size_t(y)]), partnerRowBound(rig)) << what << " row " << y;
+      worstRow = std::max(worstRow, std::abs(d.rows[size_t(y)]));
     }
     std::printf("  eye %d: the penumbra moved by at most %.2g pixels in a row (bound %.2f)\n", e,
                 worstRow, partnerRowBound(rig));
