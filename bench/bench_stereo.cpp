@@ -346,15 +346,14 @@ const char* const kUsage =
     "                            [--frames F] [--seeds K] [--reference-spp S] [--scene NAME]\n"
     "                            [--equal-frames]\n"
     "Stereo path reuse on against off on every built-in scene (or --scene), both eyes at\n"
-    "W x H (120x135), 1 spp, 8 bounces: tracer times of the eye traced first and of the second\n"
-    "(median of N, 7; the eyes take turns), hybrid and pt; the share of the second eye's paths\n"
-    "reused; equal-time per-eye relMSE and trimmed relMSE (F\n"
-    "frames off, 32, against as many as fit their tracer time on; means over K seeds, 4)\n"
-    "against a pt reference of S spp (1024); the correlation of the eyes' relative noise at "
-    "corresponding pixels; the bias of the left's shadow answers (reused samples tracing their\n"
-    "own shadow rays instead: time and relMSE). --equal-frames: reuse on gets the F frames off "
-    "gets (its error per\n"
-    "frame, not per time).\n"
+    "W x H (120x135), 1 spp, 8 bounces: tracer times of the eye traced first and of the\n"
+    "second (median of N, 7; the eyes take turns), hybrid and pt; the share of the second\n"
+    "eye's paths reused; equal-time per-eye relMSE and trimmed relMSE (F frames off, 32,\n"
+    "against as many as fit their tracer time on; means over K seeds, 4) against a pt\n"
+    "reference of S spp (1024); the bias of the left's shadow answers (reused samples tracing\n"
+    "their own shadow rays instead: time and relMSE); the correlation of the eyes' relative\n"
+    "noise at corresponding pixels. --equal-frames: reuse on gets the F frames off gets (its\n"
+    "error per frame, not per time).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
 int run(const Options& o) {
@@ -378,9 +377,9 @@ int run(const Options& o) {
          "frames_off,frames_on,relmse_off_left,relmse_off_right,relmse_on_left,relmse_on_right,"
          "trimmed_off_left,trimmed_off_right,trimmed_on_left,trimmed_on_right,correlation_off,"
          "correlation_on,hybrid_on_warm_first_ms,hybrid_on_warm_second_ms,"
-         "hybrid_warm_second_over_first,hybrid_own_shadow_rays_second_ms,shadow_answer_relmse_left,"
-         "shadow_answer_relmse_right,shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_"
-         "right\n";
+         "hybrid_warm_second_over_first,hybrid_own_shadow_rays_second_ms,"
+         "shadow_answer_relmse_left,shadow_answer_relmse_right,"
+         "shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_right\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
