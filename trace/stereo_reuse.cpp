@@ -191,15 +191,17 @@ namespace {
 
 // Whether two left samples' NEE aimed at one punctual light: the same direction for one at
 // infinity (the same sample to the bit), the same point for one at a finite distance (each
-// computed from its own x1, equal to float rounding: a few ulps of the distance and of x1's
-// coordinates; two punctual lights at one point cast the same shadows).
+// computed from its own x1 as x1 + direction x distance, equal to float rounding: a few
+// epsilons of the distance and of |x1|, within 1e-5 of them, ~80 epsilons; two punctual
+// lights at one point cast the same shadows). Two lights nearer than that count as one:
+// their neighbours' answers then only send more right samples to trace their own rays.
 bool sameDeltaLight(const FirstBounce& a, const FirstBounce& b) {
   const LightSample &la = a.light, &lb = b.light;
   if (!lb.isDelta || la.atInfinity() != lb.atInfinity()) return false;
   if (la.atInfinity()) return la.direction == lb.direction;
   const glm::vec3 d =
       (a.position + la.direction * la.distance) - (b.position + lb.direction * lb.distance);
-  const float tolerance = 1e-4f * (la.distance + glm::length(a.position));
+  const float tolerance = 1e-5f * (la.distance + glm::length(a.position));
   return glm::dot(d, d) <= tolerance * tolerance;
 }
 
