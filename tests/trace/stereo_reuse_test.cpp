@@ -349,10 +349,11 @@ Scene penumbraScene() {
 // rounding (1e-5 of the lit value; a wrong answer changes a pixel by the lit value in every
 // other frame); each row's summed luminance within the penumbra moved by at most
 // kPartnerPixels footprints (partnerRowBound). The eyes' views of the wall differ by ~0.5
-// pixel (its disparity's fraction), which bounds the expected movement; the sum of a
-// row's differences has a noise of ~1 lit pixel over 16 frames (a sample's answers differ
-// where the edge its light point casts runs between x1L and x1R: ~0.5 of a row's samples
-// per frame), within the bound's 3.
+// pixel (its disparity's fraction): a sample's answers differ where the hard edge its
+// light point casts, anywhere on the 7-pixel penumbra, runs between x1L and x1R, so ~0.5
+// of a row's reused samples per frame, each moving the row's sum by 1/16 of a lit pixel;
+// an eye reuses on 8 of the 16 frames: ~0.25 lit pixels a row (measured: at most 0.4),
+// well within the bound's 3.
 TEST(StereoReuse, TheLeftsShadowAnswerMovesAPenumbraByAtMostThePartnersDistance) {
   constexpr int kFrames = 16;
   const Scene scene = penumbraScene();
