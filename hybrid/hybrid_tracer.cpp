@@ -54,7 +54,7 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
   HybridEyeBuffers local;
   HybridEyeBuffers& buffers = reuse ? *reuse : local;
   EyeImage& img = buffers.image;
-  allocateEyeImage(img, g.width, g.height);  // zeroes it, in place when it has the size
+  sizeEyeImage(img, g.width, g.height);  // in place when it has the size: the tiles write it all
   const size_t n = size_t(g.width) * g.height;
   std::atomic<uint64_t> outside{0}, rays{0}, rejected{0}, traced{0}, skyHits{0}, paths{0},
       reused{0}, ownBounces{0};
@@ -91,13 +91,18 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
           if (ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity, RayRole::Camera).hit)
             ++tileSkyHits;
         }
-        img.color[i] = ctx.lights.environmentRadiance(dir);
+        storeUntracedPixel(img, i, ctx.lights.environmentRadiance(dir));
+        img.normal[i] = glm::vec3(0.0f);
+        img.depth[i] = 0.0f;  // reversed-Z: the far plane
         continue;
       }
       const uint32_t spp = samples.samplesAt(i, uint32_t(ctx.settings.samplesPerPixel));
       img.normal[i] = rebuiltHit.surface.shadingNormal;
       img.depth[i] = cam.depthAt(rebuiltHit.t * glm::dot(dir, forward));
-      if (spp == 0) continue;
+      if (spp == 0) {  // a pixel the sample map leaves untraced (the lens never shows it)
+        storeUntracedPixel(img, i, glm::vec3(0.0f));
+        continue;
+      }
       if (batcher.full()) batcher.flush(ctx, img, tile);
       batcher.beginPixel(i);
       SampleCounters counters{uint32_t(i),         eye, frame, 0, 0, ctx.settings.seed, spp,

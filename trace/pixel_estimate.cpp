@@ -19,10 +19,14 @@ void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r) {
 void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
   img.samples[i] = e.samples;
   const uint32_t taken = e.samples + e.misses;
-  if (taken == 0) return;
-  const float inv = 1.0f / float(taken);
+  const float inv = taken > 0 ? 1.0f / float(taken) : 0.0f;
   img.color[i] = (e.diffuse + e.specular + e.emitted) * inv;
-  if (e.samples == 0) return;
+  if (e.samples == 0) {  // no path: the lobes, their albedos and the AOVs are 0
+    for (auto* plane : {&img.diffuse, &img.specular, &img.diffuseAlbedo, &img.specularAlbedo,
+                        &img.albedo, &img.guide})
+      (*plane)[i] = glm::vec3(0.0f);
+    return;
+  }
   const float invHits = 1.0f / float(e.samples);
   const glm::vec3 dAlb = e.diffuseAlbedo * invHits, sAlb = e.specularAlbedo * invHits;
   img.diffuse[i] = e.diffuse * inv / dAlb;
@@ -33,15 +37,31 @@ void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
   img.guide[i] = e.guide;
 }
 
-void allocateEyeImage(EyeImage& img, int w, int h) {
+void storeUntracedPixel(EyeImage& img, size_t i, const glm::vec3& color) {
+  PixelEstimate e;
+  e.emitted = color;
+  e.misses = 1;
+  storePixel(img, i, e);
+}
+
+void sizeEyeImage(EyeImage& img, int w, int h) {
   const size_t n = size_t(w) * h;
   img.width = w;
   img.height = h;
   for (auto* v : {&img.color, &img.albedo, &img.normal, &img.diffuse, &img.specular,
                   &img.diffuseAlbedo, &img.specularAlbedo, &img.guide})
-    v->assign(n, glm::vec3(0.0f));
-  img.depth.assign(n, 0.0f);
-  img.samples.assign(n, 0);
+    v->resize(n);
+  img.depth.resize(n);
+  img.samples.resize(n);
+}
+
+void allocateEyeImage(EyeImage& img, int w, int h) {
+  sizeEyeImage(img, w, h);
+  for (size_t i = 0; i < img.color.size(); ++i) {
+    storeUntracedPixel(img, i, glm::vec3(0.0f));
+    img.normal[i] = glm::vec3(0.0f);
+    img.depth[i] = 0.0f;
+  }
 }
 
 }  // namespace photovr

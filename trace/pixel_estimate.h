@@ -29,10 +29,23 @@ constexpr float kMinDemodulationAlbedo = 1e-3f;
 void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r);
 
 // Writes colour (the mean over every sample, emission and environment included), the
-// demodulated lobes and their albedos (means over the samples that hit), the albedo AOV and
-// the count of paths at pixel i. A pixel with no path keeps samples 0 (a hidden-area pixel,
-// or pure path tracing's background, whose colour is then the environment it saw).
+// demodulated lobes and their albedos (means over the samples that hit), the albedo AOV,
+// the guide and the count of paths at pixel i: every plane of the image but depth and
+// normal, which are the hit's (the caller's to write). A pixel with no path has samples 0,
+// its lobes, albedos, albedo and guide 0 (a hidden-area pixel, or pure path tracing's
+// background, whose colour is then the environment it saw).
 void storePixel(EyeImage& image, size_t i, const PixelEstimate& estimate);
+
+// The same for a pixel that traces nothing: colour 'color' (the environment a sky pixel
+// shows, or 0), samples 0, the rest 0 but depth and normal.
+void storeUntracedPixel(EyeImage& image, size_t i, const glm::vec3& color);
+
+// Sizes every buffer of the image, keeping what an earlier frame left (recycled storage,
+// docs/ARCHITECTURE.md, "Memory reuse"; new storage is zero): a tracer writes every pixel's
+// every plane itself, in its parallel pass, where zeroing the image first was a serial pass
+// over all of it (104 bytes a pixel: ~4.5 ms an eye at 960x1080 here, outside every stage
+// timer).
+void sizeEyeImage(EyeImage& image, int width, int height);
 
 // Sizes every buffer of the image (zeros).
 void allocateEyeImage(EyeImage& image, int width, int height);

@@ -110,6 +110,10 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         batcher.addHit(hit, dir, counters, record, partner,
                        tracesOwnShadowRay(ctx.settings, stereo, partner));
       }
+      if (first) {  // every sample saw the environment: no hit, the far plane
+        img.depth[i] = 0.0f;
+        img.normal[i] = glm::vec3(0.0f);
+      }
     }
   batcher.flush(ctx, img, counts.traced);
 }
@@ -119,7 +123,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
 EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye,
                           uint32_t frame, EyeImage reuse, StereoRole stereo) {
   EyeImage img = std::move(reuse);
-  allocateEyeImage(img, cam.width, cam.height);
+  sizeEyeImage(img, cam.width, cam.height);  // the tiles write every pixel's every plane
   if (stereo.record) stereo.record->reset(cam, uint32_t(ctx.settings.samplesPerPixel));
   std::atomic<uint64_t> rays{0}, rejected{0}, paths{0}, reused{0}, ownBounces{0};
   tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, kTile, 0, cam.width, kTile),

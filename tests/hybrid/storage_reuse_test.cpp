@@ -33,6 +33,7 @@ void expectIdentical(const EyeImage& a, const EyeImage& b) {
   EXPECT_EQ(a.specular, b.specular);
   EXPECT_EQ(a.diffuseAlbedo, b.diffuseAlbedo);
   EXPECT_EQ(a.specularAlbedo, b.specularAlbedo);
+  EXPECT_EQ(a.guide, b.guide);
   EXPECT_EQ(a.rays, b.rays);
   EXPECT_EQ(a.rejectedSamples, b.rejectedSamples);
 }
@@ -71,15 +72,21 @@ TEST(StorageReuse, HybridFrameIntoRecycledStorageMatchesFreshOne) {
   for (int e = 0; e < 2; ++e) expectIdentical(got[e], expected[e]);
 }
 
+// Spheres' sky: the background pixels (no hit, samples 0) must read as such, not as the
+// surfaces the turned frame saw there.
 TEST(StorageReuse, PathTracedFrameIntoReusedImageMatchesFreshOne) {
-  const Scene scene = makeBuiltinScene("cornell");
+  const Scene scene = makeBuiltinScene("spheres");
   const EmbreeScene embree(scene);
   const LightSet lights(scene);
   const TraceContext ctx{scene, embree, lights, TraceSettings{}};
-  const EyeCamera cam = eyes(scene, 1, false)[0];
+  const EyeCamera cam = eyes(scene, 1, true)[0];
   const EyeImage expected = renderPathTraced(ctx, cam, 0, 1);
-  EyeImage old = renderPathTraced(ctx, eyes(scene, 0, true)[0], 0, 0);
+  EyeImage old = renderPathTraced(ctx, eyes(scene, 0, false)[0], 0, 0);
   ASSERT_NE(old.color, expected.color);
+  size_t backgroundUnderHits = 0;  // pixels the fresh frame's sky covers, where the old one hit
+  for (size_t i = 0; i < expected.samples.size(); ++i)
+    backgroundUnderHits += expected.samples[i] == 0 && old.samples[i] > 0;
+  ASSERT_GT(backgroundUnderHits, 0u);
   expectIdentical(renderPathTraced(ctx, cam, 0, 1, std::move(old)), expected);
 }
 
