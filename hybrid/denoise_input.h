@@ -15,6 +15,14 @@ struct DenoiseInput {
   gl::NoisyEye eye;  // points into the EyeImage and 'unfiltered': keep both alive
 };
 
+// Fills 'input' from 'image', in parallel, into the storage 'input' already has (a frame's
+// worth at 960x1080 is 12 MB an eye, whose first touch the frame would pay again: the
+// pipeline keeps one per eye). Serial and into fresh storage, this was ~9 ms a frame at
+// 960x1080 on 2 cores here, a CPU pass inside the denoise stage that more cores did not
+// shorten (docs/MEASUREMENTS.md, "Memory reuse").
+void fillDenoiseInput(const EyeImage& image, DenoiseInput& input);
+
+// The same into new storage (benches, tests).
 DenoiseInput makeDenoiseInput(const EyeImage& image);
 
 }  // namespace photovr

@@ -1,5 +1,8 @@
 #include "hybrid/frame_pipeline.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -10,9 +13,14 @@
 namespace photovr {
 namespace {
 
-std::vector<glm::vec4> withAlpha(const std::vector<glm::vec3>& c) {
-  std::vector<glm::vec4> out(c.size());
-  for (size_t i = 0; i < c.size(); ++i) out[i] = glm::vec4(c[i], 1.0f);
+// 'c' with alpha 1, into 'out' (storage reused; in parallel, as fillDenoiseInput).
+const std::vector<glm::vec4>& withAlpha(const std::vector<glm::vec3>& c,
+                                        std::vector<glm::vec4>& out) {
+  out.resize(c.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, c.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i < r.end(); ++i) out[i] = glm::vec4(c[i], 1.0f);
+                    });
   return out;
 }
 
@@ -175,10 +183,9 @@ void FramePipeline::finish(StereoFrame& f) {
   if (r.settings.denoise != gl::DenoiseMode::Off) {
     denoiserForUse();
     const bool reset = !historyValid_ || historyMode_ != r.settings.mode;
-    const DenoiseInput left = makeDenoiseInput(f.images[0]);
-    const DenoiseInput right = makeDenoiseInput(f.images[r.eyeCount - 1]);
-    denoiser_->run(hybrid_->gbuffer(), {left.eye, right.eye}, r.eyeCount, r.settings.denoise,
-                   reset);
+    for (int e = 0; e < r.eyeCount; ++e) fillDenoiseInput(f.images[e], denoiseInputs_[e]);
+    denoiser_->run(hybrid_->gbuffer(), {denoiseInputs_[0].eye, denoiseInputs_[r.eyeCount - 1].eye},
+                   r.eyeCount, r.settings.denoise, reset);
     historyValid_ = true;
     historyMode_ = r.settings.mode;
     f.denoised = true;
@@ -191,7 +198,7 @@ void FramePipeline::finish(StereoFrame& f) {
       if (!upload_)
         upload_ = std::make_unique<gl::EyeArrays>(config_.layout.width, config_.layout.height);
       for (int e = 0; e < r.eyeCount; ++e)
-        upload_->upload(e, withAlpha(f.images[e].color), f.images[e].depth);
+        upload_->upload(e, withAlpha(f.images[e].color, uploadColor_), f.images[e].depth);
       f.display = {upload_->color(), upload_->depth()};
     }
   }

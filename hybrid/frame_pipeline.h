@@ -31,6 +31,7 @@
 #include "gl/context.h"
 #include "gl/denoiser.h"
 #include "gl/eye_arrays.h"
+#include "hybrid/denoise_input.h"
 #include "hybrid/frame_settings.h"
 #include "hybrid/hybrid_renderer.h"
 #include "hybrid/sample_maps.h"
@@ -141,8 +142,10 @@ class FramePipeline {
   std::unique_ptr<EmbreeScene> embree_;     // without one: the tracer's scene alone
   std::unique_ptr<LightSet> lights_;
   std::unique_ptr<TraceContext> cpuContext_;
-  std::unique_ptr<gl::Denoiser> denoiser_;  // made by the first denoised frame
-  std::unique_ptr<gl::EyeArrays> upload_;   // forDisplay frames that skip the denoiser
+  std::unique_ptr<gl::Denoiser> denoiser_;     // made by the first denoised frame
+  std::unique_ptr<gl::EyeArrays> upload_;      // forDisplay frames that skip the denoiser
+  std::array<DenoiseInput, 2> denoiseInputs_;  // per eye, storage reused (denoise_input.h)
+  std::vector<glm::vec4> uploadColor_;         // an eye's colour with alpha for upload_
   std::map<std::pair<SampleMapKind, int>, StereoSampleMaps> maps_;
   std::array<EyeImage, 2> ptBuffers_;         // pt frames are traced into these
   StereoPaths ptStereo_;                      // pt's left-eye paths for stereo reuse
