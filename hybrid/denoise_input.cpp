@@ -1,28 +1,25 @@
 #include "hybrid/denoise_input.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <atomic>
+
+#include "core/parallel_ranges.h"
 
 namespace photovr {
 
 void fillDenoiseInput(const EyeImage& img, DenoiseInput& in) {
-  constexpr size_t kGrain = 4096;  // pixels per task: ~300 KB of planes read
   const size_t n = img.color.size();
   in.unfiltered.resize(n);
   const bool hasGuide = !img.guide.empty();
   std::atomic<bool> guided{false};  // any pixel with a replaced guide (NoisyEye::guide)
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      bool any = false;
-                      for (size_t i = r.begin(); i < r.end(); ++i) {
-                        in.unfiltered[i] = img.color[i] - (img.diffuse[i] * img.diffuseAlbedo[i] +
-                                                           img.specular[i] * img.specularAlbedo[i]);
-                        any |= hasGuide && img.guide[i] != glm::vec3(0.0f);
-                      }
-                      if (any) guided.store(true, std::memory_order_relaxed);
-                    });
+  parallelRanges(n, [&](size_t begin, size_t end) {
+    bool any = false;
+    for (size_t i = begin; i < end; ++i) {
+      in.unfiltered[i] = img.color[i] - (img.diffuse[i] * img.diffuseAlbedo[i] +
+                                         img.specular[i] * img.specularAlbedo[i]);
+      any |= hasGuide && img.guide[i] != glm::vec3(0.0f);
+    }
+    if (any) guided.store(true, std::memory_order_relaxed);
+  });
   in.eye.width = img.width;
   in.eye.height = img.height;
   in.eye.diffuse = img.diffuse.data();

@@ -1,12 +1,10 @@
 #include "hybrid/frame_pipeline.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
+#include "core/parallel_ranges.h"
 #include "core/stopwatch.h"
 #include "hybrid/denoise_input.h"
 
@@ -17,10 +15,9 @@ namespace {
 const std::vector<glm::vec4>& withAlpha(const std::vector<glm::vec3>& c,
                                         std::vector<glm::vec4>& out) {
   out.resize(c.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, c.size(), 4096),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t i = r.begin(); i < r.end(); ++i) out[i] = glm::vec4(c[i], 1.0f);
-                    });
+  parallelRanges(c.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) out[i] = glm::vec4(c[i], 1.0f);
+  });
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/error_metrics.h"
+#include "core/parallel_ranges.h"
 
 namespace photovr {
 
@@ -20,11 +21,13 @@ void ConvergenceMonitor::add(int eye, const std::vector<glm::vec3>& color, int w
   }
   if (color.size() != e.sum.size() || width != e.width)
     throw std::invalid_argument("ConvergenceMonitor: frame size changed");
-  for (size_t i = 0; i < color.size(); ++i) {
-    const glm::dvec3 c(color[i]);
-    e.sum[i] += c;
-    e.sumSquares[i] += c * c;
-  }
+  parallelRanges(color.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const glm::dvec3 c(color[i]);
+      e.sum[i] += c;
+      e.sumSquares[i] += c * c;
+    }
+  });
   ++e.frames;
 }
 

@@ -1,12 +1,17 @@
 #include "trace/trace_output.h"
 
+#include <algorithm>
+
+#include "core/parallel_ranges.h"
 #include "core/tonemap.h"
 
 namespace photovr {
 namespace {
 
 void meanInto(std::vector<glm::vec3>& sum, const std::vector<glm::vec3>& frame, float w) {
-  for (size_t i = 0; i < sum.size() && i < frame.size(); ++i) sum[i] += (frame[i] - sum[i]) * w;
+  parallelRanges(std::min(sum.size(), frame.size()), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) sum[i] += (frame[i] - sum[i]) * w;
+  });
 }
 
 }  // namespace
@@ -24,7 +29,9 @@ void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar) {
                       {&sum.diffuseAlbedo, &frame.diffuseAlbedo},
                       {&sum.specularAlbedo, &frame.specularAlbedo}})
     meanInto(*s, *f, w);
-  for (size_t i = 0; i < sum.samples.size(); ++i) sum.samples[i] += frame.samples[i];
+  parallelRanges(sum.samples.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) sum.samples[i] += frame.samples[i];
+  });
   sum.rays += frame.rays;
   sum.rejectedSamples += frame.rejectedSamples;
 }
