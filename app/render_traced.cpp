@@ -59,18 +59,20 @@ std::vector<EyeImage> accumulateFrames(const RenderRequest& r, const FrameRender
 
 void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, int frames,
                     double seconds, const std::string& stages) {
-  std::vector<std::string> written;
+  std::vector<OutputFile> files;
   std::vector<const EyeImage*> ptrs;
   uint64_t rays = 0, rejected = 0;
   for (size_t e = 0; e < eyes.size(); ++e) {
-    for (const std::string& p : writeEyeImages(eyes[e], r.outDir + "/" + eyeFolder(r.view, int(e))))
-      written.push_back(p);
+    for (OutputFile& f : eyeImageFiles(eyes[e], r.outDir + "/" + eyeFolder(r.view, int(e))))
+      files.push_back(std::move(f));
     ptrs.push_back(&eyes[e]);
     rays += eyes[e].rays;
     rejected += eyes[e].rejectedSamples;
   }
-  writeImage(r.outDir + "/color.png", sideBySide(ptrs, r.exposure));
-  written.push_back(r.outDir + "/color.png");
+  files.push_back({r.outDir + "/color.png", [&](const std::string& path) {
+                     writeImage(path, sideBySide(ptrs, r.exposure));
+                   }});
+  writeFiles(files);
   std::printf("scene %s: %zu triangles, %s\n", r.sceneSpec.c_str(),
               r.scene.instancedTriangleCount(), r.view.description.c_str());
   std::printf(
@@ -79,12 +81,15 @@ void writeAndReport(const RenderRequest& r, const std::vector<EyeImage>& eyes, i
       renderModeName(r.mode), r.width, r.height, eyes.size(), r.spp, frames, r.bounces, seconds,
       rays / seconds * 1e-6, (unsigned long long)rejected);
   std::printf("stages per frame: %s\nwrote:\n", stages.c_str());
-  for (const std::string& p : written) std::printf("  %s\n", p.c_str());
+  for (const OutputFile& f : files) std::printf("  %s\n", f.path.c_str());
 }
 
 // The denoiser's last frame: denoised.png (both eyes) and per eye denoised.exr (linear).
 void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eyeCount) {
+  // Read from GL here, on its thread; written concurrently (writeFiles).
   Image8 display(r.width * eyeCount, r.height, 3);
+  std::vector<std::vector<glm::vec3>> linear(static_cast<size_t>(eyeCount));
+  std::vector<OutputFile> files;
   for (int e = 0; e < eyeCount; ++e) {
     const std::vector<glm::u8vec4> d = denoiser.readDisplay(e);
     for (int y = 0; y < r.height; ++y)
@@ -93,12 +98,16 @@ void writeDenoised(const RenderRequest& r, const gl::Denoiser& denoiser, int eye
         uint8_t* p = display.at(e * r.width + x, y);
         p[0] = c.r, p[1] = c.g, p[2] = c.b;
       }
-    const std::string path = r.outDir + "/" + eyeFolder(r.view, e) + "/denoised.exr";
-    writeImage(path, toImage(denoiser.readLinear(e), r.width, r.height));
-    std::printf("  %s\n", path.c_str());
+    linear[size_t(e)] = denoiser.readLinear(e);
+    files.push_back({r.outDir + "/" + eyeFolder(r.view, e) + "/denoised.exr",
+                     [&r, &eye = linear[size_t(e)]](const std::string& path) {
+                       writeImage(path, toImage(eye, r.width, r.height));
+                     }});
   }
-  writeImage(r.outDir + "/denoised.png", display);
-  std::printf("  %s/denoised.png\n", r.outDir.c_str());
+  files.push_back({r.outDir + "/denoised.png",
+                   [&display](const std::string& path) { writeImage(path, display); }});
+  writeFiles(files);
+  for (const OutputFile& f : files) std::printf("  %s\n", f.path.c_str());
 }
 
 // Both eyes' tracer times: with stereo reuse, that of the eye traced first and of the

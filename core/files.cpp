@@ -1,5 +1,6 @@
 #include "core/files.h"
 
+#include <atomic>
 #include <signal.h>
 #include <unistd.h>
 
@@ -39,15 +40,24 @@ std::string temporaryPathFor(const std::string& path) {
 
 namespace {
 
-// The temporary file being written, removed if SIGINT, SIGTERM or SIGHUP ends the process
+// The temporary files being written, removed if SIGINT, SIGTERM or SIGHUP ends the process
 // meanwhile (`timeout` sends SIGTERM): the destination is never half-written, and this
-// keeps the folder free of the temporary file too. Handlers go only where the signal's
-// disposition is still the default, and re-raise it after the removal.
-char inFlight[4096];
-volatile sig_atomic_t haveInFlight = 0;
+// keeps the folder free of the temporary files too. Handlers go only where the signal's
+// disposition is still the default, and re-raise it after the removal. Files are written
+// concurrently (writeFiles), so each one takes a slot of its own: claimed and released
+// with lock-free atomics, which the handler may read.
+constexpr size_t kInFlightSlots = 64;
+struct InFlightSlot {
+  enum : int { kFree, kClaimed, kLive };
+  std::atomic<int> state{kFree};
+  char path[4096];
+};
+static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
+InFlightSlot inFlight[kInFlightSlots];
 
 void removeInFlightAndDie(int signal) {
-  if (haveInFlight) unlink(inFlight);
+  for (InFlightSlot& slot : inFlight)
+    if (slot.state.load() == InFlightSlot::kLive) unlink(slot.path);
   ::signal(signal, SIG_DFL);
   raise(signal);
 }
@@ -72,15 +82,19 @@ void installRemovalHandlers() {
 
 InFlightFile::InFlightFile(const std::string& path) {
   installRemovalHandlers();
-  if (path.size() < sizeof inFlight) {
-    haveInFlight = 0;
-    std::memcpy(inFlight, path.c_str(), path.size() + 1);
-    haveInFlight = 1;
+  if (path.size() >= sizeof InFlightSlot::path) return;
+  for (size_t i = 0; i < kInFlightSlots; ++i) {
+    int expected = InFlightSlot::kFree;
+    if (!inFlight[i].state.compare_exchange_strong(expected, InFlightSlot::kClaimed)) continue;
+    std::memcpy(inFlight[i].path, path.c_str(), path.size() + 1);
+    inFlight[i].state.store(InFlightSlot::kLive);
+    slot_ = int(i);
+    return;
   }
 }
 
 InFlightFile::~InFlightFile() {
-  haveInFlight = 0;
+  if (slot_ >= 0) inFlight[size_t(slot_)].state.store(InFlightSlot::kFree);
 }
 
 namespace {

@@ -33,13 +33,17 @@ inline void writeFileAtomically(const std::string& path, const std::string& byte
 void createOutputFolder(const std::string& dir);
 
 // While one lives, its temporary file is removed if SIGINT, SIGTERM or SIGHUP ends the
-// process (one at a time: photovr writes its files one after another).
+// process (up to 64 at once: writeFiles writes concurrently; beyond that, a file is not
+// covered).
 class InFlightFile {
  public:
   explicit InFlightFile(const std::string& temporaryPath);
   ~InFlightFile();
   InFlightFile(const InFlightFile&) = delete;
   InFlightFile& operator=(const InFlightFile&) = delete;
+
+ private:
+  int slot_ = -1;  // its slot in the signal handler's list, or none
 };
 
 // Renames a finished temporary file into place; on failure removes it and throws.

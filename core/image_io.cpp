@@ -2,10 +2,12 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 
 #include "core/error.h"
@@ -74,6 +76,19 @@ void writeImage(const std::string& path, const ImageF& image) {
 
 void writeImage(const std::string& path, const Image8& image) {
   writePixels(path, image.width, image.height, image.channels, TypeDesc::UINT8, image.data.data());
+}
+
+void writeFiles(const std::vector<OutputFile>& files) {
+  std::vector<std::exception_ptr> failed(files.size());
+  tbb::parallel_for(size_t(0), files.size(), [&](size_t i) {
+    try {
+      files[i].write(files[i].path);
+    } catch (...) {
+      failed[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
 }
 
 ImageF readImageF(const std::string& path) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,20 @@ struct Image8 {
 void writeImage(const std::string& path, const ImageF& image);
 // 8-bit image (already encoded, e.g. sRGB); .png.
 void writeImage(const std::string& path, const Image8& image);
+
+// A file of a command's output: its path, and what writes it there (making its pixels in
+// the same call, so that only the files being written hold theirs).
+struct OutputFile {
+  std::string path;
+  std::function<void(const std::string& path)> write;
+};
+
+// Writes the files concurrently, each one atomically (writeImage). A render's ~20 images
+// (compressed EXR, PNG) had taken ~2 s of `photovr render`'s ~6 at 960x1080 one after
+// another (docs/MEASUREMENTS.md, "Serial passes left in the frame"). If any fails, the
+// others are still written and the first failure in list order is thrown: the error does
+// not depend on which thread got there first.
+void writeFiles(const std::vector<OutputFile>& files);
 
 // Reads any format OpenImageIO knows as float (linear values as stored in the file).
 ImageF readImageF(const std::string& path);

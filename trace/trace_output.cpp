@@ -54,26 +54,29 @@ ImageF toImage(const std::vector<float>& values, int w, int h) {
   return img;
 }
 
-std::vector<std::string> writeEyeImages(const EyeImage& e, const std::string& dir) {
-  std::vector<std::string> paths;
+std::vector<OutputFile> eyeImageFiles(const EyeImage& e, const std::string& dir) {
+  std::vector<OutputFile> files;
   auto rgb = [&](const char* name, const std::vector<glm::vec3>& v) {
     if (v.empty()) return;
-    paths.push_back(dir + "/" + name);
-    writeImage(paths.back(), toImage(v, e.width, e.height));
+    files.push_back({dir + "/" + name, [&e, &v](const std::string& path) {
+                       writeImage(path, toImage(v, e.width, e.height));
+                     }});
   };
   rgb("color.exr", e.color);
   rgb("albedo.exr", e.albedo);
   rgb("normal.exr", e.normal);
-  paths.push_back(dir + "/depth.exr");
-  writeImage(paths.back(), toImage(e.depth, e.width, e.height));
-  std::vector<float> samples(e.samples.begin(), e.samples.end());
-  paths.push_back(dir + "/samples.exr");
-  writeImage(paths.back(), toImage(samples, e.width, e.height));
+  files.push_back({dir + "/depth.exr", [&e](const std::string& path) {
+                     writeImage(path, toImage(e.depth, e.width, e.height));
+                   }});
+  files.push_back({dir + "/samples.exr", [&e](const std::string& path) {
+                     const std::vector<float> samples(e.samples.begin(), e.samples.end());
+                     writeImage(path, toImage(samples, e.width, e.height));
+                   }});
   rgb("diffuse.exr", e.diffuse);
   rgb("specular.exr", e.specular);
   rgb("diffuse_albedo.exr", e.diffuseAlbedo);
   rgb("specular_albedo.exr", e.specularAlbedo);
-  return paths;
+  return files;
 }
 
 Image8 sideBySide(const std::vector<const EyeImage*>& eyes, float exposure) {

@@ -13,8 +13,9 @@ namespace photovr {
 void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar);
 
 // color.exr, albedo.exr, normal.exr, depth.exr, samples.exr, and where present the
-// denoiser inputs diffuse.exr, specular.exr, diffuse_albedo.exr, specular_albedo.exr.
-std::vector<std::string> writeEyeImages(const EyeImage& eye, const std::string& dir);
+// denoiser inputs diffuse.exr, specular.exr, diffuse_albedo.exr, specular_albedo.exr, in
+// 'dir', for writeFiles (core/image_io.h); they refer to 'eye', which must outlive them.
+std::vector<OutputFile> eyeImageFiles(const EyeImage& eye, const std::string& dir);
 
 // The eyes side by side, tone-mapped for people.
 Image8 sideBySide(const std::vector<const EyeImage*>& eyes, float exposure);

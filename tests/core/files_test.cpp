@@ -78,22 +78,27 @@ TEST(Files, OnlyRegularFilesAreRead) {
             std::string::npos);
 }
 
-// `timeout` ends a render with SIGTERM; the temporary file it was writing goes with it.
-TEST(Files, TemporaryFileIsRemovedWhenASignalEndsTheProcess) {
+// `timeout` ends a render with SIGTERM; the temporary files it was writing (several at
+// once: writeFiles) go with it, and one already finished is not in the list any more.
+TEST(Files, TemporaryFilesAreRemovedWhenASignalEndsTheProcess) {
   const fs::path dir = testing::freshTestDir("photovr_files");
-  const std::string tmp = (dir / ".tmp.1.a.exr").string();
+  const std::string a = (dir / ".tmp.1.a.exr").string(), b = (dir / ".tmp.1.b.exr").string(),
+                    done = (dir / ".tmp.1.done.exr").string();
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    std::ofstream(tmp) << "half";
-    const InFlightFile guard(tmp);
+    for (const std::string& f : {a, b, done}) std::ofstream(f) << "half";
+    { const InFlightFile finished(done); }
+    const InFlightFile guardA(a), guardB(b);
     raise(SIGTERM);
     _exit(0);  // not reached
   }
   int status = 0;
   ASSERT_EQ(waitpid(child, &status, 0), child);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
-  EXPECT_FALSE(fs::exists(tmp));
+  EXPECT_FALSE(fs::exists(a));
+  EXPECT_FALSE(fs::exists(b));
+  EXPECT_TRUE(fs::exists(done));  // released before the signal: someone else's to keep
 }
 
 }  // namespace

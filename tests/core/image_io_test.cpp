@@ -61,6 +61,35 @@ TEST(ImageIo, FailedRenameLeavesNothingBehind) {
   EXPECT_TRUE(std::filesystem::is_directory(dir + "/x.exr/keep"));
 }
 
+// writeFiles writes concurrently, yet a failure is the same whichever thread got there
+// first: every file that can be written is, and the error names the first failing one in
+// list order. Several files of each kind, so that some run at the same time.
+TEST(ImageIo, WriteFilesWritesTheRestAndNamesTheFirstFailure) {
+  const std::string dir = tempPath("write-files");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::vector<OutputFile> files;
+  std::vector<std::string> good, bad;
+  for (int i = 0; i < 12; ++i) {
+    // Every third below a regular file, which fails the open.
+    const bool fails = i % 3 == 1;
+    if (fails) std::ofstream(dir + "/blocker" + std::to_string(i)) << "not a folder";
+    const std::string path = dir + (fails ? "/blocker" + std::to_string(i) + "/x.exr"
+                                          : "/ok" + std::to_string(i) + ".exr");
+    (fails ? bad : good).push_back(path);
+    files.push_back({path, [](const std::string& p) { writeImage(p, ImageF(64, 64, 3)); }});
+  }
+  std::string why;
+  try {
+    writeFiles(files);
+  } catch (const InputError& e) {
+    why = e.what();
+  }
+  ASSERT_NE(why, "") << "no failure reported";
+  EXPECT_NE(why.find(bad.front()), std::string::npos) << why;
+  for (const std::string& p : good) EXPECT_TRUE(std::filesystem::exists(p)) << p;
+}
+
 TEST(ImageIo, FailedOpenNamesTheFile) {
   const std::string parent = tempPath("not-a-folder");
   std::filesystem::remove_all(parent);
