@@ -17,9 +17,9 @@ void EyeWindow::set(const EyeCamera& cam, uint32_t samplesPerPixel) {
 void StereoPaths::reset(const EyeCamera& cam, uint32_t samplesPerPixel) {
   set(cam, samplesPerPixel);
   // Resized, not cleared: a slot counts only if this frame's generation stamped it (at
-  // 960 x 1080 the slots are ~100 MB, too much to clear per frame).
+  // 960 x 1080 the slots are ~220 MB, too much to clear per frame).
   const size_t n = size_t(cam.width) * cam.height * stride;
-  bounces.resize(n);
+  if (bounces.size() != n) bounces.resize(n);
   stamps.resize(n, 0);
   if (++generation == 0) {  // after 2^32 frames: start over with every stamp stale
     std::fill(stamps.begin(), stamps.end(), 0);

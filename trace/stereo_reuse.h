@@ -60,6 +60,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -117,13 +119,40 @@ struct EyeWindow {
   void set(const EyeCamera& camera, uint32_t samplesPerPixel);
 };
 
+// Record slots left uninitialised until a left path writes one (startPath), which its stamp
+// then vouches for (StereoPaths::stamps): a 960x1080 frame's 220 MB are first touched by
+// the tiles that record into them, in parallel, and never where a pixel records nothing
+// (the sky), instead of all by one thread before the frame (0.2-0.5 s of `photovr render`'s
+// first frame, docs/MEASUREMENTS.md, "Serial passes left in the frame"). FirstBounce is an
+// aggregate, so the storage's bytes hold its objects once written (C++20 implicit lifetime).
+class RecordSlots {
+ public:
+  size_t size() const { return size_; }
+  // n slots, none written (what the old slots held is gone).
+  void resize(size_t n) {
+    data_.reset(static_cast<FirstBounce*>(::operator new[](n * sizeof(FirstBounce))));
+    size_ = n;
+  }
+  FirstBounce& operator[](size_t i) { return data_[i]; }
+  const FirstBounce& operator[](size_t i) const { return data_[i]; }
+  const FirstBounce* data() const { return data_.get(); }
+
+ private:
+  struct Release {
+    void operator()(FirstBounce* p) const { ::operator delete[](p); }
+  };
+  std::unique_ptr<FirstBounce[], Release> data_;
+  size_t size_ = 0;
+};
+static_assert(std::is_trivially_destructible_v<FirstBounce>);
+
 // The first bounces of the eye traced first in a frame, for the other eye (in this file
 // "left" is the eye that records, "right" the one that reuses; the eyes take turns,
 // stereoTurnsOf). Its window is the recording eye's.
 struct StereoPaths : EyeWindow {
-  std::vector<FirstBounce> bounces;  // pixel * stride + sample
-  std::vector<uint32_t> stamps;      // per slot: the generation that wrote it
-  uint32_t generation = 0;           // this frame's
+  RecordSlots bounces;           // pixel * stride + sample; read only where stamped
+  std::vector<uint32_t> stamps;  // per slot: the generation that wrote it
+  uint32_t generation = 0;       // this frame's
   // On frames the right eye goes first: the left eye's window, whose pixels' numbers the
   // right eye's samples draw (ownPathCounters).
   EyeWindow leftEye;
