@@ -27,7 +27,8 @@ build: setup
 # (bench_denoise), what each skip saves (bench_skips), compositor vs G-buffer and lens
 # sampling (bench_compositor), overscan margins (bench_overscan), the Sobol sampler against
 # the random one (bench_sampler), stereo path reuse on against off (bench_stereo), an
-# animated frame against a static one (bench_animation).
+# animated frame against a static one (bench_animation), the whole-image passes outside the
+# tracer, serial against now (bench_passes).
 # `photovr bench [--quick]`
 # is the error-vs-time harness. Not
 # tests: their numbers depend on the machine and its load.
@@ -41,6 +42,7 @@ bench: build
 	./$(BUILD)/bench/photovr_bench_sampler --out out/bench
 	./$(BUILD)/bench/photovr_bench_stereo --out out/bench
 	./$(BUILD)/bench/photovr_bench_animation --out out/bench
+	./$(BUILD)/bench/photovr_bench_passes --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build. `make asan` runs the whole suite under
 # it (~15 min of tests on 2 cores); `make test` runs the modules in SANITIZED_MODULES, the part
