@@ -122,9 +122,10 @@ struct EyeWindow {
 // Record slots left uninitialised until a left path writes one (startPath), which its stamp
 // then vouches for (StereoPaths::stamps): a 960x1080 frame's 220 MB are first touched by
 // the tiles that record into them, in parallel, and never where a pixel records nothing
-// (the sky), instead of all by one thread before the frame (0.2-0.5 s of `photovr render`'s
-// first frame, docs/MEASUREMENTS.md, "Serial passes left in the frame"). FirstBounce is an
-// aggregate, so the storage's bytes hold its objects once written (C++20 implicit lifetime).
+// (the sky), instead of all by one thread before the frame (a median 0.14 s, once 0.85 s,
+// of `photovr render`'s first frame here; docs/MEASUREMENTS.md, "Serial passes left in the
+// frame"). FirstBounce is an aggregate, so the storage's bytes hold its objects once
+// written (C++20 implicit lifetime).
 class RecordSlots {
  public:
   size_t size() const { return size_; }
