@@ -12,22 +12,20 @@
 // - files: an eye's nine EXRs and a PNG, written one after another then, concurrently now
 //   (core/image_io.h writeFiles), into --out/bench_passes_files (removed afterwards).
 //
-// Best of --repeats (5). Writes bench_passes.csv to --out (out/bench).
+// Best of --repeats (5) rounds, old and new alternating within each, after a warm-up round. Writes
+// bench_passes.csv to --out (out/bench).
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "bench/bench_cli.h"
+#include "bench/pass_timing.h"
 #include "core/huge_pages.h"
-#include "core/stopwatch.h"
 #include "hybrid/denoise_input.h"
 #include "trace/pixel_estimate.h"
 #include "trace/trace_output.h"
@@ -68,33 +66,23 @@ void serialClear(EyeImage& img) {
 
 void serialAccumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar) {
   const float w = 1.0f / float(framesSoFar + 1);
-  for (auto [s, f] : {std::pair{&sum.color, &frame.color},
-                      {&sum.albedo, &frame.albedo},
-                      {&sum.diffuse, &frame.diffuse},
-                      {&sum.specular, &frame.specular},
-                      {&sum.diffuseAlbedo, &frame.diffuseAlbedo},
-                      {&sum.specularAlbedo, &frame.specularAlbedo}})
-    for (size_t i = 0; i < s->size(); ++i) (*s)[i] += ((*f)[i] - (*s)[i]) * w;
+  for (EyePlane plane : kAveragedPlanes) {
+    std::vector<glm::vec3>& s = sum.*plane;
+    const std::vector<glm::vec3>& f = frame.*plane;
+    for (size_t i = 0; i < s.size(); ++i) s[i] += (f[i] - s[i]) * w;
+  }
   for (size_t i = 0; i < sum.samples.size(); ++i) sum.samples[i] += frame.samples[i];
 }
 
-std::vector<glm::vec3> serialDenoiseInput(const EyeImage& img) {
+std::vector<glm::vec3> serialDenoiseInput(const EyeImage& img, bool& guided) {
   std::vector<glm::vec3> unfiltered(img.color.size());  // fresh storage, as each frame had
-  for (size_t i = 0; i < img.color.size(); ++i)
+  guided = false;
+  for (size_t i = 0; i < img.color.size(); ++i) {
     unfiltered[i] = img.color[i] - (img.diffuse[i] * img.diffuseAlbedo[i] +
                                     img.specular[i] * img.specularAlbedo[i]);
-  return unfiltered;
-}
-
-// Best of 'repeats' runs of 'pass', in milliseconds.
-double bestMs(int repeats, const std::function<void()>& pass) {
-  double best = 1e30;
-  for (int k = 0; k < repeats; ++k) {
-    const auto t0 = Clock::now();
-    pass();
-    best = std::min(best, msSince(t0));
+    guided |= !img.guide.empty() && img.guide[i] != glm::vec3(0.0f);
   }
-  return best;
+  return unfiltered;
 }
 
 const char* const kUsage =
@@ -122,6 +110,7 @@ int run(const Options& o) {
            sum = syntheticEye(c.width, c.height, 0.2f);
   EyeImage cleared = syntheticEye(c.width, c.height, 0.4f);
   DenoiseInput kept;
+  bool guided = false;
   fillDenoiseInput(frame, kept);  // its storage touched once, as a pipeline's is
   const std::vector<OutputFile> files = [&] {
     std::vector<OutputFile> f = eyeImageFiles(frame, dir);
@@ -130,23 +119,26 @@ int run(const Options& o) {
     return f;
   }();
 
+  // Old and new alternate within each round (bench/pass_timing.h), so a busy spell of the
+  // shared machine falls on both.
+  const std::vector<PassTime> t =
+      bestOfRounds(c.repeats,
+                   {[&] { serialClear(cleared); }, [&] { serialAccumulate(sum, frame, 3); },
+                    [&] { accumulate(sum, frame, 3); }, [&] { serialDenoiseInput(frame, guided); },
+                    [&] { fillDenoiseInput(frame, kept); },
+                    [&] {
+                      for (const OutputFile& f : files) f.write(f.path);
+                    },
+                    [&] { writeFiles(files); }},
+                   [] {});
   struct Row {
     const char* pass;
     double serialMs, nowMs;
   };
-  const std::vector<Row> rows = {
-      {"clear", bestMs(c.repeats, [&] { serialClear(cleared); }), 0.0},
-      {"accumulate", bestMs(c.repeats, [&] { serialAccumulate(sum, frame, 3); }),
-       bestMs(c.repeats, [&] { accumulate(sum, frame, 3); })},
-      {"denoise input", bestMs(c.repeats, [&] { serialDenoiseInput(frame); }),
-       bestMs(c.repeats, [&] { fillDenoiseInput(frame, kept); })},
-      {"files",
-       bestMs(c.repeats,
-              [&] {
-                for (const OutputFile& f : files) f.write(f.path);
-              }),
-       bestMs(c.repeats, [&] { writeFiles(files); })},
-  };
+  const std::vector<Row> rows = {{"clear", t[0].wall, 0.0},
+                                 {"accumulate", t[1].wall, t[2].wall},
+                                 {"denoise input", t[3].wall, t[4].wall},
+                                 {"files", t[5].wall, t[6].wall}};
   std::filesystem::remove_all(dir);
 
   std::printf("bench_passes: one eye %dx%d, %d threads, best of %d\n", c.width, c.height, threads,

@@ -27,16 +27,18 @@ struct PassTime {
 // The fastest of 'repeats' rounds per pass (the least disturbed: the machine is shared, and
 // its other load only ever adds time), the passes alternating within each round so that a
 // busy spell falls on all of them; one warm-up round first (llvmpipe compiles shader
-// variants on first use).
+// variants on first use). 'finish' ends each pass inside its time: GL passes wait for the
+// GPU, CPU passes (bench_passes) need nothing.
 inline std::vector<PassTime> bestOfRounds(int repeats,
-                                          const std::vector<std::function<void()>>& passes) {
+                                          const std::vector<std::function<void()>>& passes,
+                                          const std::function<void()>& finish = gl::waitForGpu) {
   std::vector<PassTime> best(passes.size(), {1e300, 1e300});
   for (int round = 0; round <= repeats; ++round)
     for (size_t p = 0; p < passes.size(); ++p) {
       const auto t0 = Clock::now();
       const double c0 = processCpuMs();
       passes[p]();
-      gl::waitForGpu();
+      finish();
       const PassTime t{msSince(t0), processCpuMs() - c0};
       if (round > 0) best[p] = {std::min(best[p].wall, t.wall), std::min(best[p].cpu, t.cpu)};
     }

@@ -9,8 +9,10 @@ namespace photovr {
 namespace {
 
 void meanInto(std::vector<glm::vec3>& sum, const std::vector<glm::vec3>& frame, float w) {
-  parallelRanges(std::min(sum.size(), frame.size()), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) sum[i] += (frame[i] - sum[i]) * w;
+  glm::vec3* s = sum.data();  // the data pointers held in registers, not reloaded per pixel
+  const glm::vec3* f = frame.data();
+  parallelRanges(std::min(sum.size(), frame.size()), [=](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) s[i] += (f[i] - s[i]) * w;
   });
 }
 
@@ -22,13 +24,7 @@ void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar) {
     return;
   }
   const float w = 1.0f / float(framesSoFar + 1);
-  for (auto [s, f] : {std::pair{&sum.color, &frame.color},
-                      {&sum.albedo, &frame.albedo},
-                      {&sum.diffuse, &frame.diffuse},
-                      {&sum.specular, &frame.specular},
-                      {&sum.diffuseAlbedo, &frame.diffuseAlbedo},
-                      {&sum.specularAlbedo, &frame.specularAlbedo}})
-    meanInto(*s, *f, w);
+  for (EyePlane plane : kAveragedPlanes) meanInto(sum.*plane, frame.*plane, w);
   parallelRanges(sum.samples.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) sum.samples[i] += frame.samples[i];
   });

@@ -9,6 +9,13 @@
 
 namespace photovr {
 
+// The planes accumulate averages over frames (samples are summed; depth, normal and guide
+// are the first frame's: frames share their view).
+using EyePlane = std::vector<glm::vec3> EyeImage::*;
+inline constexpr EyePlane kAveragedPlanes[] = {&EyeImage::color,         &EyeImage::albedo,
+                                               &EyeImage::diffuse,       &EyeImage::specular,
+                                               &EyeImage::diffuseAlbedo, &EyeImage::specularAlbedo};
+
 // Running mean over frames of equal weight (frames share their settings).
 void accumulate(EyeImage& sum, const EyeImage& frame, int framesSoFar);
 

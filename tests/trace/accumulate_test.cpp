@@ -44,7 +44,8 @@ EyeImage randomFrame(std::mt19937& rng) {
   return f;
 }
 
-// The planes accumulate averages, and what it computes for them, one pixel after another.
+// The planes accumulate must average, listed here, not taken from kAveragedPlanes: a plane
+// dropped from that list must fail this test.
 using Plane = std::vector<glm::vec3> EyeImage::*;
 constexpr Plane kMeanPlanes[] = {&EyeImage::color,         &EyeImage::albedo,
                                  &EyeImage::diffuse,       &EyeImage::specular,
