@@ -112,10 +112,11 @@ struct alignas(16) BatchRayHit {
   float u = 0.0f, v = 0.0f;
   uint32_t primID = ~0u, geomID = ~0u, instID = ~0u;  // ~0u: RTC_INVALID_GEOMETRY_ID
 
+  // A mesh in the top level (EmbreeScene) has no instance id: its geometry id is the instance.
+  uint32_t instance() const { return instID != ~0u ? instID : geomID; }
   TraceHit traceHit() const {
     if (geomID == ~0u) return {};
-    // A mesh in the top level (EmbreeScene) has no instance id: its geometry id is the instance.
-    return {true, ray.tfar, instID != ~0u ? instID : geomID, primID, u, v};
+    return {true, ray.tfar, instance(), primID, u, v};
   }
 };
 

@@ -120,6 +120,8 @@ void LightSet::update() {
   addEnvironment(radius, weights);
   addStandIns(skips_, weights);
   selection_ = weights.empty() ? Distribution1D() : Distribution1D(weights);
+  selectionPmf_.resize(weights.size());
+  for (size_t i = 0; i < weights.size(); ++i) selectionPmf_[i] = selection_.pmf(int(i));
 }
 
 void LightSet::addAreaTriangles(std::vector<float>& weights) {
@@ -248,16 +250,16 @@ void LightSet::sampleTriangle(const AreaTriangle& tri, const glm::vec3& point, g
 void LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u, LightSample& s) const {
   s = LightSample{};
   if (empty()) return;
-  const Distribution1D::Discrete pick = selection_.sampleDiscrete(uSelect);
+  const int pick = selection_.sampleIndex(uSelect);
   const int n = int(punctual_.size()), m = int(triangles_.size());
   const int firstStandIn = n + m + (environmentIndex_ >= 0 ? 1 : 0);
-  if (pick.index >= firstStandIn) {
-    sampleStandIn(standIns_[pick.index - firstStandIn], point, u, s);
-  } else if (pick.index < n) {
-    samplePunctual(punctual_[pick.index], point, s);
+  if (pick >= firstStandIn) {
+    sampleStandIn(standIns_[pick - firstStandIn], point, u, s);
+  } else if (pick < n) {
+    samplePunctual(punctual_[pick], point, s);
     s.pdf = s.radiance == glm::vec3(0.0f) ? 0.0f : 1.0f;
-  } else if (pick.index < n + m) {
-    sampleTriangle(triangles_[pick.index - n], point, u, s);
+  } else if (pick < n + m) {
+    sampleTriangle(triangles_[pick - n], point, u, s);
   } else {
     const EnvironmentSample e = environment_.sample(u);
     s.direction = e.direction;
@@ -265,7 +267,7 @@ void LightSet::sample(const glm::vec3& point, float uSelect, glm::vec2 u, LightS
     s.radiance = e.radiance;
     s.pdf = e.pdf;
   }
-  s.pdf *= pick.pmf;
+  s.pdf *= selectionPmf_[size_t(pick)];
 }
 
 float LightSet::pdfArea(uint32_t instance, uint32_t triangle, const glm::vec3& from,
@@ -277,7 +279,7 @@ float LightSet::pdfArea(uint32_t instance, uint32_t triangle, const glm::vec3& f
   const float dist2 = glm::dot(d, d);
   const float cosLight = std::abs(glm::dot(lightNormal, d)) / std::sqrt(dist2);
   if (!(cosLight > 0.0f)) return 0.0f;
-  return selection_.pmf(int(punctual_.size() + index)) * dist2 / (cosLight * tri.area);
+  return selectionPmf_[punctual_.size() + index] * dist2 / (cosLight * tri.area);
 }
 
 uint32_t LightSet::lightIndex(uint32_t instance, uint32_t triangle) const {
@@ -287,7 +289,7 @@ uint32_t LightSet::lightIndex(uint32_t instance, uint32_t triangle) const {
 
 float LightSet::pdfEnvironment(const glm::vec3& dir) const {
   if (environmentIndex_ < 0) return 0.0f;
-  return selection_.pmf(environmentIndex_) * environment_.pdf(dir);
+  return selectionPmf_[size_t(environmentIndex_)] * environment_.pdf(dir);
 }
 
 glm::vec3 LightSet::environmentRadiance(const glm::vec3& dir) const {

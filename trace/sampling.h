@@ -132,6 +132,7 @@ class Distribution1D {
 
   Sample sampleContinuous(float u) const;
   Discrete sampleDiscrete(float u) const;
+  int sampleIndex(float u) const { return findCell(u); }  // sampleDiscrete's index alone
   float pdf(float x) const { return cellPdf(cellIndex(x, size())); }   // density at x in [0,1]
   float cellPdf(int index) const { return func_[index] / integral_; }  // ... in cell 'index'
   float pmf(int index) const { return func_[index] / (integral_ * float(size())); }

@@ -117,16 +117,28 @@ void traceShadows(const TraceContext& ctx, std::span<PathState> paths,
 // Geometry stage: every bounce hit's position, error bound and normal in one vectorised pass
 // (trace/hit_geometry.h); s.hitOf[j] indexes bounce ray j's, or is ~0u for a miss.
 // s.found[j] is bounce ray j's answer, kept for advancePath: a TraceHit made on the stack
-// right before the call that reads it stalled on store forwarding there.
+// right before the call that reads it stalled on store forwarding there. Here each field
+// is written from the ray's own: a TraceHit built and then copied went through the stack
+// in 8-byte stores read back by a 16-byte load, which stalled too (a fifth of
+// continuePaths' own time on cornell, perf annotate).
 void rebuildGeometry(const TraceContext& ctx, WavefrontScratch& s) {
   const size_t n = s.bounceRays.size();
   s.hits.clear();
   s.hitOf.resize(n);
   s.found.resize(n);
   for (size_t j = 0; j < n; ++j) {
-    const TraceHit& th = s.found[j] = s.bounceRays[j].traceHit();
-    s.hitOf[j] = th.hit ? uint32_t(s.hits.size()) : ~0u;
-    if (th.hit) s.hits.push_back({th.instance, th.triangle, th.b1, th.b2});
+    const BatchRayHit& r = s.bounceRays[j];
+    TraceHit& th = s.found[j];
+    if (r.geomID == ~0u) {
+      th = TraceHit{};
+      s.hitOf[j] = ~0u;
+      continue;
+    }
+    const uint32_t instance = r.instance();
+    th.hit = true, th.t = r.ray.tfar, th.instance = instance, th.triangle = r.primID;
+    th.b1 = r.u, th.b2 = r.v;
+    s.hitOf[j] = uint32_t(s.hits.size());
+    s.hits.push_back({instance, r.primID, r.u, r.v});
   }
   s.geometry.resize(s.hits.size());
   hitGeometries(ctx.scene, s.hits, s.geometry);
