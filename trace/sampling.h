@@ -37,6 +37,17 @@ inline float luminance(const glm::vec3& c) {
   return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
+// c >= std::cos(a) for a in [0, 1], to the bit, calling cos only where c lies between its
+// Taylor bounds 1 - a^2/2 <= cos(a) <= 1 - a^2/2 + a^4/24, each widened by 4e-7 (several
+// float ulps below 1, for their rounding and cos's). Where c is a cosine between two views
+// and a a lobe's width, it is rarely that close.
+inline bool atLeastCosOf(float c, float a) {
+  const float lower = 1.0f - 0.5f * a * a, upper = lower + a * a * a * a * (1.0f / 24.0f);
+  if (c < lower - 4e-7f) return false;
+  if (c > upper + 4e-7f) return true;
+  return c >= std::cos(a);
+}
+
 inline float safeSqrt(float v) {
   return std::sqrt(std::max(0.0f, v));
 }

@@ -57,8 +57,9 @@ bool wideAgainstViews(const BsdfParams& bsdf, const glm::vec3& toLeft, const glm
   const float roughness =
       bsdf.clearcoat > 0.0f ? std::min(bsdf.roughness, bsdf.clearcoatRoughness) : bsdf.roughness;
   if (!(roughness >= kReuseMinRoughness)) return false;
-  // alpha >= acos(c), with alpha <= 1 < pi: c >= cos(alpha).
-  return glm::dot(toLeft, toRight) >= std::cos(roughnessToAlpha(roughness));
+  // alpha >= acos(c), with alpha <= 1 < pi: c >= cos(alpha). atLeastCosOf, not a call of
+  // libm's cosf on every reused sample of a flat surface (a fifth of this test's time, perf).
+  return atLeastCosOf(glm::dot(toLeft, toRight), roughnessToAlpha(roughness));
 }
 
 }  // namespace

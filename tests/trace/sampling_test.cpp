@@ -53,6 +53,31 @@ TEST(ChiSquare, RejectsAWrongDensity) {
   EXPECT_FALSE(chiSquareTest(h, [](double x, double) { return 2.0 * x; }).passed());
 }
 
+// --- Cosine bounds. ----------------------------------------------------------------------
+
+// atLeastCosOf answers c >= cos(a) to the bit. The hard cases are c within a few ulps of
+// cos(a), where the bounds' margin decides whether cos is called: every c within 40 ulps
+// either side of cosf(a), for a over [0, 1] (dense near 0, where the bounds are tight).
+TEST(CosineBounds, AnswerAsCosDoesWithinUlpsOfTheBoundary) {
+  int mismatches = 0, checked = 0;
+  for (int i = 0; i <= 20000; ++i) {
+    const float t = float(i) / 20000.0f, a = t * t;
+    const float c0 = std::cos(a);
+    float below = c0, above = c0;
+    for (int k = 0; k <= 40; ++k) {
+      for (const float c : {below, above}) {
+        mismatches += atLeastCosOf(c, a) != (c >= std::cos(a));
+        ++checked;
+      }
+      below = std::nextafter(below, -2.0f), above = std::nextafter(above, 2.0f);
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << "of " << checked;
+  // Far from the boundary the bounds answer alone, either way.
+  EXPECT_TRUE(atLeastCosOf(1.0f, 0.25f));
+  EXPECT_FALSE(atLeastCosOf(0.9f, 0.25f));
+}
+
 // --- Random numbers. --------------------------------------------------------------------
 
 TEST(Rng, UnitFloatNeverReachesOne) {
