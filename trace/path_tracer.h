@@ -51,6 +51,11 @@ inline bool tracesOwnShadowRay(const TraceSettings& s, const StereoRole& role,
 }
 
 struct PathResult {
+  // Provided, as PathState's (trace/path_stages.h): with the implicit one, GCC zeroed a
+  // result with `rep stosq`, which no later load of it can take its value from, so the
+  // path's first sums waited for the string store to finish (store forwarding).
+  PathResult() {}
+
   glm::vec3 radiance{0.0f};  // reflected radiance towards wo (emission of the start excluded)
   // The denoiser's lobes (radiance = diffuse + specular): the part reflected by the diffuse
   // lobe of the path's denoiser surface (the start, or where a path through a smooth mirror

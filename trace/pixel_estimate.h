@@ -11,6 +11,11 @@ namespace photovr {
 // Sums over a pixel's samples. A sample either continues a path from its primary hit or
 // (pure path tracing) missed every surface and saw the environment.
 struct PixelEstimate {
+  // Provided: with the implicit one, GCC zeroed the estimate with `rep stosq`, and the first
+  // addPath's loads of it waited on that string store (half of addPath's time, perf
+  // annotate); the members' initialisers alone are vector stores, which forward.
+  PixelEstimate() {}
+
   glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
   glm::vec3 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
   glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
