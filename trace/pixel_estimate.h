@@ -11,9 +11,12 @@ namespace photovr {
 // Sums over a pixel's samples. A sample either continues a path from its primary hit or
 // (pure path tracing) missed every surface and saw the environment.
 struct PixelEstimate {
-  // Provided: with the implicit one, GCC zeroed the estimate with `rep stosq`, and the first
-  // addPath's loads of it waited on that string store (half of addPath's time, perf
-  // annotate); the members' initialisers alone are vector stores, which forward.
+  // Provided: with the implicit one, GCC zeroed the estimate with `rep stosq`, from which
+  // the first addPath's loads cannot forward (half of addPath's time, perf annotate); the
+  // members' initialisers alone are 16-byte vector stores. A sum across two of them still
+  // waits (two fifths of addPath's time after this); sums aligned to 16 bytes moved that
+  // wait into storePixel rather than removing it (docs/MEASUREMENTS.md, "Waits in the path
+  // loop").
   PixelEstimate() {}
 
   glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
