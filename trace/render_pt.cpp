@@ -4,8 +4,11 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "trace/hit_geometry.h"
 #include "trace/path_tracer.h"
 #include "trace/path_batcher.h"
+#include "trace/scratch.h"
 
 namespace photovr {
 namespace {
@@ -20,6 +24,11 @@ namespace {
 constexpr int kTile = 16;  // 16 x 16 pixels: enough work per task, many tasks for balance
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+static_assert(std::is_trivially_destructible_v<SurfaceHit>);  // built over in place below
+
+// How many surfaces ahead of the one being added a reusing eye asks for partner records.
+constexpr size_t kPrefetchAhead = 16;
 
 struct Counts {
   PathBatcher::Totals traced;  // rays (the primary ones too), rejected samples, own bounces
@@ -70,16 +79,43 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
     if (h.geomID != ~0u) hits.push_back({h.traceHit().instance, h.primID, h.u, h.v});
   geometry.resize(hits.size());
   hitGeometries(ctx.scene, hits, geometry);
-  size_t k = 0;  // the next hit's index in hits and geometry
+  // The tile's surfaces, built in place, and where the samples look across, each one's
+  // standing pixel in the other eye's window, before any sample is added: a reusing eye's
+  // partner records are then asked for kPrefetchAhead surfaces before they are read, as
+  // the hybrid's tiles do (each had been a miss when findPartner read it).
+  thread_local std::vector<SurfaceHit> surfaces;
+  thread_local std::vector<StandingPixel> standing;
+  growTo(surfaces, hits.size());
+  growTo(standing, stereo.looksAcross() ? hits.size() : 0);
+  size_t k = 0;  // the next hit's index in hits, geometry, surfaces and standing
   size_t j = 0;
+  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+    for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+      const glm::vec3 centreRay =  // for the standing pixel
+          stereo.looksAcross() ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
+      for (uint32_t s = 0; s < spp; ++s, ++j) {
+        if (primary[j].geomID == ~0u) continue;
+        SurfaceHit& hit = surfaces[k];
+        ::new (static_cast<void*>(&hit)) SurfaceHit(
+            surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], primary[j].ray.dir));
+        if (stereo.looksAcross())
+          standing[k] = standingPixelOf(windowOf(stereo), hit,
+                                        {cam.pose.position, centreRay,
+                                         samplePosition(ctx.settings.sampler, frame * spp + s), s});
+        ++k;
+      }
+    }
+  if (stereo.reuse)
+    for (size_t h = 0; h < std::min(kPrefetchAhead, k); ++h)
+      prefetchPartner(*stereo.reuse, standing[h]);
+  k = 0;
+  j = 0;
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
       const size_t i = img.index(x, y);
       if (batcher.full()) batcher.flush(ctx, img, counts.traced);
       batcher.beginPixel(i);
       bool first = true;
-      const glm::vec3 centreRay =  // for findPartner
-          stereo.looksAcross() ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
       for (uint32_t s = 0; s < spp; ++s, ++j) {
         const glm::vec3& dir = primary[j].ray.dir;
         const TraceHit th = primary[j].traceHit();
@@ -87,9 +123,9 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           batcher.addMiss(ctx.lights.environmentRadiance(dir));
           continue;
         }
-        const SurfaceHit hit =
-            surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], dir);
-        ++k;
+        if (stereo.reuse && k + kPrefetchAhead < hits.size())
+          prefetchPartner(*stereo.reuse, standing[k + kPrefetchAhead]);
+        const SurfaceHit& hit = surfaces[k];
         if (first) {
           img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
           img.normal[i] = hit.shadingNormal;
@@ -99,12 +135,9 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         SampleCounters counters{uint32_t(i),         eye, frame, s, 0, ctx.settings.seed, spp,
                                 ctx.settings.sampler};
         const FirstBounce* partner =
-            stereo.looksAcross()
-                ? partnerOrOwnNumbers(stereo, hit,
-                                      {cam.pose.position, centreRay,
-                                       samplePosition(ctx.settings.sampler, frame * spp + s), s},
-                                      counters)
-                : nullptr;
+            stereo.looksAcross() ? partnerOrOwnNumbers(stereo, hit, standing[k], s, counters)
+                                 : nullptr;
+        ++k;
         counts.reused += partner != nullptr;
         ++counts.paths;
         batcher.addHit(hit, dir, counters, record, partner,
