@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <limits>
@@ -44,14 +43,6 @@ void standingPixels(const StereoRole& stereo, const gl::GBufferImage& g, const C
   standingPixelsOf(windowOf(stereo), cam.pose.position, cam.jitter, jobs);
 }
 
-// How many pixels ahead of the one being traced the tile loop asks for their partners'
-// records (prefetchPartner), which have arrived when the pixel reads them. Asked for all at
-// once after standingPixels, a tile's 256 records (~1,100 cache lines) were a burst the
-// memory system queued: spheres' second eye at 960 x 1080 took 2.5 % longer (82.1 against
-// 80.1 ms, 4 alternating runs of photovr_bench_stereo; 8 ahead read the same), and at
-// 120 x 135, whose records stay in cache, the same (docs/MEASUREMENTS.md).
-constexpr size_t kPrefetchAhead = 16;
-
 }  // namespace
 
 EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, const EyeCamera& cam,
@@ -88,12 +79,9 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     thread_local std::vector<StandingPixel> standing;
     if (stereo.looksAcross())
       standingPixels(stereo, g, camRays, cam, hits, r.begin(), r.end(), standing);
-    if (stereo.reuse)
-      for (size_t j = 0; j < std::min(kPrefetchAhead, r.size()); ++j)
-        prefetchPartner(*stereo.reuse, standing[j]);
     for (size_t i = r.begin(); i < r.end(); ++i) {
-      if (stereo.reuse && i + kPrefetchAhead < r.end())
-        prefetchPartner(*stereo.reuse, standing[i + kPrefetchAhead - r.begin()]);
+      if (stereo.reuse)
+        prefetchPartnersAhead(*stereo.reuse, std::span(standing).first(r.size()), i - r.begin());
       const RebuiltHit& rebuiltHit = hits[i - r.begin()];
       const glm::vec3& dir = rebuiltHit.direction;
       if (!g.record(i).hit()) {               // background: the environment, untraced

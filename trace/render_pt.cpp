@@ -4,9 +4,9 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <atomic>
 #include <limits>
+#include <span>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -26,9 +26,6 @@ constexpr int kTile = 16;  // 16 x 16 pixels: enough work per task, many tasks f
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 static_assert(std::is_trivially_destructible_v<SurfaceHit>);  // built over in place below
-
-// How many surfaces ahead of the one being added a reusing eye asks for partner records.
-constexpr size_t kPrefetchAhead = 16;
 
 struct Counts {
   PathBatcher::Totals traced;  // rays (the primary ones too), rejected samples, own bounces
@@ -81,7 +78,7 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
   hitGeometries(ctx.scene, hits, geometry);
   // The tile's surfaces, built in place, and where the samples look across, each one's
   // standing pixel in the other eye's window, before any sample is added: a reusing eye's
-  // partner records are then asked for kPrefetchAhead surfaces before they are read, as
+  // partner records are then asked for ahead of their reads (prefetchPartnersAhead), as
   // the hybrid's tiles do (each had been a miss when findPartner read it).
   thread_local std::vector<SurfaceHit> surfaces;
   thread_local std::vector<StandingPixel> standing;
@@ -105,9 +102,6 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
         ++k;
       }
     }
-  if (stereo.reuse)
-    for (size_t h = 0; h < std::min(kPrefetchAhead, k); ++h)
-      prefetchPartner(*stereo.reuse, standing[h]);
   k = 0;
   j = 0;
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
@@ -123,8 +117,8 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
           batcher.addMiss(ctx.lights.environmentRadiance(dir));
           continue;
         }
-        if (stereo.reuse && k + kPrefetchAhead < hits.size())
-          prefetchPartner(*stereo.reuse, standing[k + kPrefetchAhead]);
+        if (stereo.reuse)
+          prefetchPartnersAhead(*stereo.reuse, std::span(standing).first(hits.size()), k);
         const SurfaceHit& hit = surfaces[k];
         if (first) {
           img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
