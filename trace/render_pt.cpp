@@ -17,6 +17,7 @@
 #include "trace/path_tracer.h"
 #include "trace/path_batcher.h"
 #include "trace/scratch.h"
+#include "trace/standing_lanes.h"
 
 namespace photovr {
 namespace {
@@ -31,6 +32,29 @@ struct Counts {
   PathBatcher::Totals traced;  // rays (the primary ones too), rejected samples, own bounces
   uint64_t paths = 0, reused = 0;
 };
+
+// The standing pixels (stereo_reuse.h) of a tile's hits (surfaces, in the tile's pixel and
+// sample order; standing[k] is surfaces[k]'s), in SIMD lanes (trace/standing_lanes.h), one
+// run per sample number: a run shares its offset in the pixel.
+void standingPixels(const StereoRole& stereo, const EyeCamera& cam, const CameraRays& camRays,
+                    const tbb::blocked_range2d<int>& r, std::span<const BatchRayHit> primary,
+                    std::span<const glm::vec2> offsets, std::span<const SurfaceHit> surfaces,
+                    std::span<StandingPixel> standing) {
+  thread_local std::vector<StandingJob> jobs;
+  const size_t spp = offsets.size();
+  for (size_t s = 0; s < spp; ++s) {
+    jobs.clear();
+    size_t j = 0, k = 0;  // primary's index of the next ray, surfaces' of the next hit
+    for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+      for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+        for (size_t t = 0; t < spp; ++t, ++j) {
+          if (primary[j].geomID == ~0u) continue;
+          if (t == s) jobs.push_back({&surfaces[k], camRays.throughCentre(x, y), &standing[k]});
+          ++k;
+        }
+    standingPixelsOf(windowOf(stereo), cam.pose.position, offsets[s], jobs);
+  }
+}
 
 // Sample s of frame f sits at the sampler's position for index f * spp + s
 // (samplePosition): with one sample per frame that is the frame's jitter, where the
@@ -50,15 +74,17 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
   thread_local std::vector<glm::vec2> positions;
   thread_local std::vector<glm::vec3> directions;
   thread_local PathBatcher batcher;
+  // Sample s's offset in its pixel is the same in every pixel (samplePosition of frame * spp
+  // + s): drawn once a tile, not per pixel (6 % of pt's reusing eye, perf).
+  thread_local std::vector<glm::vec2> offsets;
+  offsets.resize(spp);
+  for (uint32_t s = 0; s < spp; ++s)
+    offsets[s] = samplePosition(ctx.settings.sampler, frame * spp + s);
   positions.clear();
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-      for (uint32_t s = 0; s < spp; ++s) {
-        const SampleCounters c{uint32_t(img.index(x, y)), eye, frame, s, 0, ctx.settings.seed, spp,
-                               ctx.settings.sampler};
-        positions.push_back(glm::vec2(x + 0.5f, y + 0.5f) +
-                            samplePosition(ctx.settings.sampler, c.sampleIndex()));
-      }
+      for (uint32_t s = 0; s < spp; ++s)
+        positions.push_back(glm::vec2(x + 0.5f, y + 0.5f) + offsets[s]);
   directions.resize(positions.size());
   sampleRays(camRays, positions, directions);
   primary.clear();
@@ -84,26 +110,17 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
   thread_local std::vector<StandingPixel> standing;
   growTo(surfaces, hits.size());
   growTo(standing, stereo.looksAcross() ? hits.size() : 0);
+  for (size_t k = 0, j = 0; j < primary.size(); ++j) {
+    if (primary[j].geomID == ~0u) continue;
+    ::new (static_cast<void*>(&surfaces[k])) SurfaceHit(
+        surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], primary[j].ray.dir));
+    ++k;
+  }
+  if (stereo.looksAcross())
+    standingPixels(stereo, cam, camRays, r, primary, offsets,
+                   std::span(surfaces).first(hits.size()), standing);
   size_t k = 0;  // the next hit's index in hits, geometry, surfaces and standing
   size_t j = 0;
-  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-    for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-      const glm::vec3 centreRay =  // for the standing pixel
-          stereo.looksAcross() ? camRays.throughCentre(x, y) : glm::vec3(0.0f);
-      for (uint32_t s = 0; s < spp; ++s, ++j) {
-        if (primary[j].geomID == ~0u) continue;
-        SurfaceHit& hit = surfaces[k];
-        ::new (static_cast<void*>(&hit)) SurfaceHit(
-            surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], primary[j].ray.dir));
-        if (stereo.looksAcross())
-          standing[k] = standingPixelOf(windowOf(stereo), hit,
-                                        {cam.pose.position, centreRay,
-                                         samplePosition(ctx.settings.sampler, frame * spp + s), s});
-        ++k;
-      }
-    }
-  k = 0;
-  j = 0;
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
       const size_t i = img.index(x, y);
