@@ -38,7 +38,11 @@ uint64_t rebuildPrimaryHits(const Scene& scene, const MaterialTable& materials,
   size_t count = 0;
   for (size_t i = begin; i < end; ++i) {
     const VisibilityRecord rec = g.record(i);
-    if (!rec.hit() || !isValidRecord(scene, rec)) {
+    if (!rec.hit()) {  // the background: its ray alone is read (RebuiltHit{} was 168 bytes)
+      hits[i - begin].direction = directions[i - begin];
+      continue;
+    }
+    if (!isValidRecord(scene, rec)) {
       hits[i - begin] = RebuiltHit{};
       hits[i - begin].direction = directions[i - begin];
       continue;

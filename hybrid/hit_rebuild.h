@@ -29,9 +29,10 @@ RebuiltHit rebuildPrimaryHit(const Scene& scene, const VisibilityRecord& record,
                              const glm::vec3& origin, const glm::vec3& direction);
 
 // rebuildPrimaryHit for pixels [begin, end) of 'g', each along rays.pixelRay from 'origin',
-// bit for bit: hits[i - begin] for pixel i (hits.size() >= end - begin); where the record saw
-// nothing or names nothing in 'scene', RebuiltHit{} with the pixel's ray direction, which the
-// tracer's loop reads for every pixel (the background's environment) instead of computing it again.
+// bit for bit: hits[i - begin] for pixel i (hits.size() >= end - begin); where the record
+// names nothing in 'scene', RebuiltHit{} with the pixel's ray direction; where it saw nothing
+// (the background), the direction alone, the rest left as it was. The tracer's loop reads the
+// direction of every pixel (the background's environment) instead of computing it again.
 // The rays' intersections and geometry run eight at a time in SIMD lanes (namedHits). Returns how
 // many hits were flagged outside. 'materials': the scene's (MaterialTable(scene), or the
 // tracer's EmbreeScene::materials()).

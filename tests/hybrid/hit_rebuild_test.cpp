@@ -24,6 +24,15 @@ void expectSameBits(const RebuiltHit& a, const RebuiltHit& b, size_t i) {
   testing::expectSameBits(a.surface, b.surface);
 }
 
+// A hit of 'cam''s centre pixel, to fill a buffer with before a rebuild writes it.
+RebuiltHit stale(const Scene& scene, const EyeCamera& cam) {
+  const EmbreeScene embree(scene);
+  const glm::vec3 dir = cam.pixelRay(cam.width / 2, cam.height / 2);
+  const TraceHit h = embree.intersect(cam.pose.position, dir, 0.0f, 1e30f, RayRole::Camera);
+  const VisibilityRecord rec{h.instance, h.triangle, h.b1, h.b2};
+  return h.hit ? rebuildPrimaryHit(scene, rec, cam.pose.position, dir) : RebuiltHit{};
+}
+
 // Pixel i's record: Embree's hit of its own ray (what the rasterizer records), the
 // background where it sees nothing; every fifth a random triangle its ray misses (clamped,
 // flagged); every seventh an instance or triangle that does not exist.
@@ -63,7 +72,9 @@ TEST(HitRebuild, BatchesEqualOneByOneBitForBit) {
     const gl::GBufferImage g = gbufferOf(scene, cam);
     const CameraRays rays(cam);
     const size_t n = g.visibility.size();
-    std::vector<RebuiltHit> batch(n);
+    // Filled with another pixel's hit first: a tile's buffer holds the last tile's, and a
+    // pixel with no hit gets its ray alone.
+    std::vector<RebuiltHit> batch(n, stale(scene, cam));
     const MaterialTable materials(scene);  // the batch's; the one-by-one rebuild computes them
     // Two ranges, neither a multiple of 8 long, as the tracer's tasks split an image.
     uint64_t outside =
@@ -74,9 +85,13 @@ TEST(HitRebuild, BatchesEqualOneByOneBitForBit) {
     for (size_t i = 0; i < n; ++i) {
       const VisibilityRecord rec = g.record(i);
       const int x = int(i % size_t(g.width)), y = int(i / size_t(g.width));
-      RebuiltHit one;  // RebuiltHit{} and its ray where the record saw or names nothing
+      RebuiltHit one;  // RebuiltHit{} and its ray where the record names nothing
       one.direction = cam.pixelRay(x, y);
-      if (rec.hit() && isValidRecord(scene, rec)) {
+      if (!rec.hit()) {  // the background: its ray alone
+        EXPECT_EQ(batch[i].direction, one.direction) << i;
+        continue;
+      }
+      if (isValidRecord(scene, rec)) {
         one = rebuildPrimaryHit(scene, rec, cam.pose.position, one.direction);
         ++hits;
       }
