@@ -65,7 +65,7 @@ void PathBatcher::flush(const TraceContext& ctx, EyeImage& img, Totals& totals) 
       else if (s.finished >= 0)
         addPath(e, s.seen, finished_[size_t(s.finished)]);
       else
-        e.emitted += s.seen, ++e.misses;  // a miss
+        addMissedRay(e, s.seen);
     }
     storePixel(img, p.index, e);
     totals.rays += e.rays;

@@ -2,13 +2,21 @@
 
 namespace photovr {
 
+namespace {
+
+glm::vec4 lanes(const glm::vec3& v) {
+  return glm::vec4(v, 0.0f);
+}
+
+}  // namespace
+
 void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r) {
-  e.diffuse += r.diffuse;
-  e.specular += r.specular;
-  e.albedo += r.albedo;
-  e.emitted += emission;
-  e.diffuseAlbedo += glm::max(r.diffuseAlbedo, glm::vec3(kMinDemodulationAlbedo));
-  e.specularAlbedo += glm::max(r.specularAlbedo, glm::vec3(kMinDemodulationAlbedo));
+  e.diffuse += lanes(r.diffuse);
+  e.specular += lanes(r.specular);
+  e.albedo += lanes(r.albedo);
+  e.emitted += lanes(emission);
+  e.diffuseAlbedo += lanes(glm::max(r.diffuseAlbedo, glm::vec3(kMinDemodulationAlbedo)));
+  e.specularAlbedo += lanes(glm::max(r.specularAlbedo, glm::vec3(kMinDemodulationAlbedo)));
   if (e.samples == 0) e.guide = r.guide;
   e.rays += r.rays;
   e.rejected += r.rejected;
@@ -16,11 +24,16 @@ void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r) {
   ++e.samples;
 }
 
+void addMissedRay(PixelEstimate& e, const glm::vec3& environment) {
+  e.emitted += lanes(environment);
+  ++e.misses;
+}
+
 void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
   img.samples[i] = e.samples;
   const uint32_t taken = e.samples + e.misses;
   const float inv = taken > 0 ? 1.0f / float(taken) : 0.0f;
-  img.color[i] = (e.diffuse + e.specular + e.emitted) * inv;
+  img.color[i] = glm::vec3((e.diffuse + e.specular + e.emitted) * inv);
   if (e.samples == 0) {  // no path: the lobes, their albedos and the AOVs are 0
     for (auto* plane : {&img.diffuse, &img.specular, &img.diffuseAlbedo, &img.specularAlbedo,
                         &img.albedo, &img.guide})
@@ -28,19 +41,18 @@ void storePixel(EyeImage& img, size_t i, const PixelEstimate& e) {
     return;
   }
   const float invHits = 1.0f / float(e.samples);
-  const glm::vec3 dAlb = e.diffuseAlbedo * invHits, sAlb = e.specularAlbedo * invHits;
-  img.diffuse[i] = e.diffuse * inv / dAlb;
-  img.specular[i] = e.specular * inv / sAlb;
+  const glm::vec3 dAlb(e.diffuseAlbedo * invHits), sAlb(e.specularAlbedo * invHits);
+  img.diffuse[i] = glm::vec3(e.diffuse * inv) / dAlb;
+  img.specular[i] = glm::vec3(e.specular * inv) / sAlb;
   img.diffuseAlbedo[i] = dAlb;
   img.specularAlbedo[i] = sAlb;
-  img.albedo[i] = e.albedo * invHits;
+  img.albedo[i] = glm::vec3(e.albedo * invHits);
   img.guide[i] = e.guide;
 }
 
 void storeUntracedPixel(EyeImage& img, size_t i, const glm::vec3& color) {
   PixelEstimate e;
-  e.emitted = color;
-  e.misses = 1;
+  addMissedRay(e, color);
   storePixel(img, i, e);
 }
 

@@ -4,24 +4,26 @@
 
 #include <cstdint>
 
+#include <glm/vec4.hpp>
+
 #include "trace/path_tracer.h"
 
 namespace photovr {
 
 // Sums over a pixel's samples. A sample either continues a path from its primary hit or
 // (pure path tracing) missed every surface and saw the environment.
-struct PixelEstimate {
+struct alignas(16) PixelEstimate {
   // Provided: with the implicit one, GCC zeroed the estimate with `rep stosq`, from which
-  // the first addPath's loads cannot forward (half of addPath's time, perf annotate); the
-  // members' initialisers alone are 16-byte vector stores. A sum across two of them still
-  // waits (two fifths of addPath's time after this); sums aligned to 16 bytes moved that
-  // wait into storePixel rather than removing it (docs/MEASUREMENTS.md, "Waits in the path
-  // loop").
+  // the first addPath's loads cannot forward (half of addPath's time, perf annotate).
   PixelEstimate() {}
 
-  glm::vec3 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
-  glm::vec3 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
-  glm::vec3 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
+  // The sums are 16-byte lanes (the fourth 0), each written and read whole: as vec3s they
+  // lay across the initialisers' 16-byte stores and addPath's 8- and 4-byte ones, and each
+  // read of one waited for store forwarding to fail (most of addPath's and storePixel's
+  // time in the reusing eye's profile; docs/MEASUREMENTS.md, "pt's reusing eye").
+  glm::vec4 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
+  glm::vec4 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
+  glm::vec4 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
   glm::vec3 guide{0.0f};                                // the first path's PathResult::guide
   uint32_t samples = 0;                                 // paths continued from a hit
   uint32_t misses = 0;                                  // primary rays that left the scene
@@ -35,6 +37,9 @@ constexpr float kMinDemodulationAlbedo = 1e-3f;
 // One path continued from a hit whose emission towards the eye is 'emission' (its result
 // 'r', which carries its demodulation albedos).
 void addPath(PixelEstimate& e, const glm::vec3& emission, const PathResult& r);
+
+// A primary ray that left the scene and saw 'environment'.
+void addMissedRay(PixelEstimate& e, const glm::vec3& environment);
 
 // Writes colour (the mean over every sample, emission and environment included), the
 // demodulated lobes and their albedos (means over the samples that hit), the albedo AOV,

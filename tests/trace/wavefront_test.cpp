@@ -58,8 +58,7 @@ EyeImage scalarReference(const TraceContext& ctx, const EyeCamera& cam, uint32_t
         const TraceHit th =
             ctx.embree.intersect(cam.pose.position, dir, 0.0f, kInfinity, RayRole::Camera);
         if (!th.hit) {
-          e.emitted += ctx.lights.environmentRadiance(dir);
-          ++e.misses;
+          addMissedRay(e, ctx.lights.environmentRadiance(dir));
           continue;
         }
         const SurfaceHit hit = surfaceAt(ctx.scene, th.instance, th.triangle, th.b1, th.b2, dir);
