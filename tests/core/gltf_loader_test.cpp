@@ -115,6 +115,16 @@ void expectMatNear(const glm::mat4& a, const glm::mat4& b, float tolerance) {
     for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tolerance) << c << "," << r;
 }
 
+// Bytes that are neither glTF JSON nor a binary glTF: the parser's message quotes what it
+// last read, and the line must not carry the file's raw bytes to the terminal.
+TEST(GltfLoader, AFileOfRandomBytesIsRefusedInPrintableText) {
+  std::string bytes;
+  for (int i = 0; i < 256; ++i) bytes += char(255 - i);  // 0xff first: every byte value
+  const std::string what = loadError(writeGltf("random.glb", bytes));
+  for (char c : what) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << what;
+  EXPECT_NE(what.find("\\xff"), std::string::npos) << what;
+}
+
 TEST(GltfLoader, MinimalTriangleLoadsExactPositions) {
   const Scene scene = loadGltf(writeGltf("tri.gltf", triangleGltf()));
   ASSERT_EQ(scene.meshes.size(), 1u);
