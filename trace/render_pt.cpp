@@ -56,71 +56,87 @@ void standingPixels(const StereoRole& stereo, const EyeCamera& cam, const Camera
   }
 }
 
+// A tile's buffers, kept by its thread from tile to tile.
+struct TileScratch {
+  std::vector<glm::vec2> offsets;    // sample s's offset in its pixel
+  std::vector<glm::vec2> positions;  // each ray's point in the window
+  std::vector<glm::vec3> directions;
+  std::vector<BatchRayHit> primary;  // pixel by pixel, sample by sample
+  std::vector<HitRef> hits;          // the primary rays that hit, in order
+  std::vector<HitGeometry> geometry;
+  std::vector<SurfaceHit> surfaces;  // hits[k]'s surface at k (grown, never shrunk)
+  std::vector<StandingPixel> standing;
+};
+
 // Sample s of frame f sits at the sampler's position for index f * spp + s
 // (samplePosition): with one sample per frame that is the frame's jitter, where the
 // G-buffer samples too; with more, each sample has its own place in the pixel, so one
-// frame of N samples antialiases as N frames of one do. Depth and normal are the first
-// hit's (the G-buffer keeps one surface per pixel too).
-//
-// A tile's primary rays go to Embree as one coherent batch, then its paths as batches of
-// the wavefront tracer.
+// frame of N samples antialiases as N frames of one do. The offset is the same in every
+// pixel: drawn once a tile, not per pixel (it was 6 % of pt's reusing eye, perf). The
+// tile's primary rays go to Embree as one coherent batch.
+void traceCameraRays(const TraceContext& ctx, const EyeCamera& cam, const CameraRays& camRays,
+                     uint32_t frame, const tbb::blocked_range2d<int>& r, TileScratch& t) {
+  const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
+  t.offsets.resize(spp);
+  for (uint32_t s = 0; s < spp; ++s)
+    t.offsets[s] = samplePosition(ctx.settings.sampler, frame * spp + s);
+  t.positions.clear();
+  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+    for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+      for (uint32_t s = 0; s < spp; ++s)
+        t.positions.push_back(glm::vec2(x + 0.5f, y + 0.5f) + t.offsets[s]);
+  t.directions.resize(t.positions.size());
+  sampleRays(camRays, t.positions, t.directions);
+  t.primary.clear();
+  // In place: a ray made on the stack and copied stalled on store forwarding.
+  for (const glm::vec3& dir : t.directions)
+    t.primary.emplace_back().ray.set(cam.pose.position, dir, 0.0f, kInfinity);
+  ctx.embree.intersectBatch(t.primary.data(), t.primary.size(), ctx.settings.batchCall,
+                            RayRole::Camera);
+}
+
+// The tile's surfaces, built in place: the hits' geometry in one vectorised pass, as the
+// wavefront tracer's bounce hits, then each hit's surface. Returns how many rays hit.
+size_t buildSurfaces(const TraceContext& ctx, TileScratch& t) {
+  t.hits.clear();
+  for (const BatchRayHit& h : t.primary)
+    if (h.geomID != ~0u) t.hits.push_back({h.traceHit().instance, h.primID, h.u, h.v});
+  t.geometry.resize(t.hits.size());
+  hitGeometries(ctx.scene, t.hits, t.geometry);
+  growTo(t.surfaces, t.hits.size());
+  for (size_t k = 0, j = 0; j < t.primary.size(); ++j) {
+    if (t.primary[j].geomID == ~0u) continue;
+    ::new (static_cast<void*>(&t.surfaces[k])) SurfaceHit(surfaceAt(
+        ctx.scene, ctx.embree.materials(), t.hits[k], t.geometry[k], t.primary[j].ray.dir));
+    ++k;
+  }
+  return t.hits.size();
+}
+
+// Depth and normal are the first hit's (the G-buffer keeps one surface per pixel too). Where
+// the samples look across, every surface's standing pixel in the other eye's window is found
+// before any sample is added: a reusing eye's partner records are then asked for ahead of
+// their reads (prefetchPartnersAhead), as the hybrid's tiles do (each had been a miss when
+// findPartner read it). Then the paths go as batches of the wavefront tracer.
 void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint32_t frame,
                const StereoRole& stereo, const tbb::blocked_range2d<int>& r, EyeImage& img,
                Counts& counts) {
   const uint32_t spp = uint32_t(ctx.settings.samplesPerPixel);
   const glm::vec3 forward = cam.pose.orientation * glm::vec3(0, 0, -1);
   const CameraRays camRays(cam);
-  thread_local std::vector<BatchRayHit> primary;
-  thread_local std::vector<glm::vec2> positions;
-  thread_local std::vector<glm::vec3> directions;
+  thread_local TileScratch t;
   thread_local PathBatcher batcher;
-  // Sample s's offset in its pixel is the same in every pixel (samplePosition of frame * spp
-  // + s): drawn once a tile, not per pixel (6 % of pt's reusing eye, perf).
-  thread_local std::vector<glm::vec2> offsets;
-  offsets.resize(spp);
-  for (uint32_t s = 0; s < spp; ++s)
-    offsets[s] = samplePosition(ctx.settings.sampler, frame * spp + s);
-  positions.clear();
-  for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-    for (int x = r.cols().begin(); x < r.cols().end(); ++x)
-      for (uint32_t s = 0; s < spp; ++s)
-        positions.push_back(glm::vec2(x + 0.5f, y + 0.5f) + offsets[s]);
-  directions.resize(positions.size());
-  sampleRays(camRays, positions, directions);
-  primary.clear();
-  // In place: a ray made on the stack and copied stalled on store forwarding.
-  for (const glm::vec3& dir : directions)
-    primary.emplace_back().ray.set(cam.pose.position, dir, 0.0f, kInfinity);
-  ctx.embree.intersectBatch(primary.data(), primary.size(), ctx.settings.batchCall,
-                            RayRole::Camera);
-  counts.traced.rays += primary.size();
-  // The hits' geometry in one vectorised pass, as the wavefront tracer's bounce hits.
-  thread_local std::vector<HitRef> hits;
-  thread_local std::vector<HitGeometry> geometry;
-  hits.clear();
-  for (const BatchRayHit& h : primary)
-    if (h.geomID != ~0u) hits.push_back({h.traceHit().instance, h.primID, h.u, h.v});
-  geometry.resize(hits.size());
-  hitGeometries(ctx.scene, hits, geometry);
-  // The tile's surfaces, built in place, and where the samples look across, each one's
-  // standing pixel in the other eye's window, before any sample is added: a reusing eye's
-  // partner records are then asked for ahead of their reads (prefetchPartnersAhead), as
-  // the hybrid's tiles do (each had been a miss when findPartner read it).
-  thread_local std::vector<SurfaceHit> surfaces;
-  thread_local std::vector<StandingPixel> standing;
-  growTo(surfaces, hits.size());
-  growTo(standing, stereo.looksAcross() ? hits.size() : 0);
-  for (size_t k = 0, j = 0; j < primary.size(); ++j) {
-    if (primary[j].geomID == ~0u) continue;
-    ::new (static_cast<void*>(&surfaces[k])) SurfaceHit(
-        surfaceAt(ctx.scene, ctx.embree.materials(), hits[k], geometry[k], primary[j].ray.dir));
-    ++k;
-  }
+  traceCameraRays(ctx, cam, camRays, frame, r, t);
+  counts.traced.rays += t.primary.size();
+  const size_t hitCount = buildSurfaces(ctx, t);
+  const std::span<const SurfaceHit> surfaces = std::span(t.surfaces).first(hitCount);
+  growTo(t.standing, stereo.looksAcross() ? hitCount : 0);
+  const std::span<StandingPixel> standing =
+      std::span(t.standing).first(stereo.looksAcross() ? hitCount : 0);
   if (stereo.looksAcross())
-    standingPixels(stereo, cam, camRays, r, primary, offsets,
-                   std::span(surfaces).first(hits.size()), standing);
-  size_t k = 0;  // the next hit's index in hits, geometry, surfaces and standing
-  size_t j = 0;
+    standingPixels(stereo, cam, camRays, r, t.primary, t.offsets, surfaces, standing);
+  size_t k = 0;  // the next hit's index in surfaces and standing
+  size_t j = 0;  // the next ray's in primary
   for (int y = r.rows().begin(); y < r.rows().end(); ++y)
     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
       const size_t i = img.index(x, y);
@@ -128,14 +144,13 @@ void traceTile(const TraceContext& ctx, const EyeCamera& cam, uint32_t eye, uint
       batcher.beginPixel(i);
       bool first = true;
       for (uint32_t s = 0; s < spp; ++s, ++j) {
-        const glm::vec3& dir = primary[j].ray.dir;
-        const TraceHit th = primary[j].traceHit();
+        const glm::vec3& dir = t.primary[j].ray.dir;
+        const TraceHit th = t.primary[j].traceHit();
         if (!th.hit) {
           batcher.addMiss(ctx.lights.environmentRadiance(dir));
           continue;
         }
-        if (stereo.reuse)
-          prefetchPartnersAhead(*stereo.reuse, std::span(standing).first(hits.size()), k);
+        if (stereo.reuse) prefetchPartnersAhead(*stereo.reuse, standing, k);
         const SurfaceHit& hit = surfaces[k];
         if (first) {
           img.depth[i] = cam.depthAt(th.t * glm::dot(dir, forward));
