@@ -19,8 +19,9 @@ struct alignas(16) PixelEstimate {
 
   // The sums are 16-byte lanes (the fourth 0), each written and read whole: as vec3s they
   // lay across the initialisers' 16-byte stores and addPath's 8- and 4-byte ones, and each
-  // read of one waited for store forwarding to fail (most of addPath's and storePixel's
-  // time in the reusing eye's profile; docs/MEASUREMENTS.md, "pt's reusing eye").
+  // read of one waited for store forwarding to fail (two fifths of addPath's time in the
+  // reusing eye's profile, about half of it after; storePixel's hot spot is its divisions;
+  // docs/MEASUREMENTS.md, "pt's reusing eye").
   glm::vec4 diffuse{0.0f}, specular{0.0f}, albedo{0.0f};
   glm::vec4 emitted{0.0f};  // what the primary rays saw themselves: emission, environment
   glm::vec4 diffuseAlbedo{0.0f}, specularAlbedo{0.0f};  // demodulation albedos (clamped)
