@@ -11,7 +11,11 @@
 // 2. Equal-time quality (hybrid): --frames frames with reuse off take a tracer time T; with
 //    reuse on, frames are traced until their tracer time reaches T; --seeds times. Per-eye relMSE
 //    and trimmed relMSE (core/error_metrics.h) of each mean against a converged pt reference
-//    (harness/reference_cache.h, --reference-spp).
+//    (harness/reference_cache.h, --reference-spp). Then reuse off again for as many frames
+//    as reuse on got: off's trimmed relMSE at its frames over that at on's is what the frames
+//    alone buy (1/N for a variance, less where a trimmed firefly tail or a bias floors it,
+//    more or less where one count is a power of two, a whole Sobol net); the equal-time
+//    figure over it is what reuse costs per frame.
 // 3. The left's shadow answers (trace/stereo_reuse.h, "The approximations"): reuse on with
 //    every reused sample tracing its own shadow ray instead (TraceSettings::
 //    reusedOwnShadowRays), the same numbers: the second eye's tracer time, timed with the
@@ -75,6 +79,7 @@ struct Row {
   int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
   double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
   std::array<double, 2> relMseOff{}, relMseOn{}, trimmedOff{}, trimmedOn{};
+  std::array<double, 2> trimmedOffAtOn{};  // reuse off at on's frames (equal time only)
   double correlationOff = 0.0, correlationOn = 0.0;
   size_t pairs = 0;
   bool equalFrames = false;  // Args::equalFrames
@@ -286,6 +291,10 @@ void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, con
       row.trimmedOff[e] += trimmedRelMse(off.mean[e], ref.eyes[e]) / a.seeds;
       row.trimmedOn[e] += trimmedRelMse(on.mean[e], ref.eyes[e]) / a.seeds;
     }
+    if (a.equalFrames) continue;
+    const Accumulated offAtOn = accumulate(r, view, a, false, on.frames, 0.0, seed);
+    for (int e = 0; e < 2; ++e)
+      row.trimmedOffAtOn[e] += trimmedRelMse(offAtOn.mean[e], ref.eyes[e]) / a.seeds;
   }
   row.framesOff = a.frames;
   row.framesOn = (row.framesOn + a.seeds / 2) / a.seeds;
@@ -319,6 +328,15 @@ void print(const Row& r, std::ofstream& csv) {
       r.frameMsOn, r.relMseOff[0], r.relMseOff[1], r.relMseOn[0], r.relMseOn[1],
       r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
       r.trimmedOff[0] / r.trimmedOn[0], r.trimmedOff[1] / r.trimmedOn[1]);
+  if (!r.equalFrames) {
+    const std::array<double, 2> bought{r.trimmedOff[0] / r.trimmedOffAtOn[0],
+                                       r.trimmedOff[1] / r.trimmedOffAtOn[1]};
+    std::printf(
+        "         reuse off at on's frames: trimmed off/off %.2f/%.2f, what the frames alone "
+        "buy; trimmed on over it %.2f/%.2f, what reuse costs per frame\n",
+        bought[0], bought[1], r.trimmedOff[0] / r.trimmedOn[0] / bought[0],
+        r.trimmedOff[1] / r.trimmedOn[1] / bought[1]);
+  }
   std::printf(
       "         the left's shadow answers: second eye %.1f ms with own shadow rays; relMSE "
       "L/R of %d frames against own rays %.2g/%.2g (against the reference %.4f/%.4f)\n",
@@ -338,7 +356,8 @@ void print(const Row& r, std::ofstream& csv) {
       << r.correlationOff << ',' << r.correlationOn << ',' << r.hybridWarmMs[0] << ','
       << r.hybridWarmMs[1] << ',' << ratio(r.hybridWarmMs) << ',' << r.ownShadowSecondMs << ','
       << r.shadowAnswerRelMse[0] << ',' << r.shadowAnswerRelMse[1] << ','
-      << r.shadowAnswerRefRelMse[0] << ',' << r.shadowAnswerRefRelMse[1] << '\n';
+      << r.shadowAnswerRefRelMse[0] << ',' << r.shadowAnswerRefRelMse[1] << ','
+      << r.trimmedOffAtOn[0] << ',' << r.trimmedOffAtOn[1] << '\n';
 }
 
 const char* const kUsage =
@@ -379,7 +398,8 @@ int run(const Options& o) {
          "correlation_on,hybrid_on_warm_first_ms,hybrid_on_warm_second_ms,"
          "hybrid_warm_second_over_first,hybrid_own_shadow_rays_second_ms,"
          "shadow_answer_relmse_left,shadow_answer_relmse_right,"
-         "shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_right\n";
+         "shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_right,"
+         "trimmed_off_at_on_frames_left,trimmed_off_at_on_frames_right\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
