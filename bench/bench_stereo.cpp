@@ -15,7 +15,10 @@
 //    as reuse on got: off's trimmed relMSE at its frames over that at on's is what the frames
 //    alone buy (1/N for a variance, less where a trimmed firefly tail or a bias floors it,
 //    more or less where one count is a power of two, a whole Sobol net); the equal-time
-//    figure over it is what reuse costs per frame.
+//    figure over it is what reuse costs per frame. Then equal time again at 3/4 and 5/4 of
+//    --frames, and the mean of the three counts' ratios: at 32, a whole Sobol net, off's
+//    error is 10-15 % below its 1/N line on atrium (24, 38, 40, 51 and 62 frames lie on it),
+//    which lowered that count's ratio by as much; the mean does not rest on one count.
 // 3. The left's shadow answers (trace/stereo_reuse.h, "The approximations"): reuse on with
 //    every reused sample tracing its own shadow ray instead (TraceSettings::
 //    reusedOwnShadowRays), the same numbers: the second eye's tracer time, timed with the
@@ -69,6 +72,17 @@ struct EyeTimes {
   double ownBounceShare = 0.0;  // ... and of those, the ones that traced an own bounce too
 };
 
+// Equal-time quality at one frame count off (section 2 above), means over the seeds.
+struct EqualTime {
+  int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
+  double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
+  std::array<double, 2> relMseOff{}, relMseOn{}, trimmedOff{}, trimmedOn{};
+  std::array<double, 2> trimmedOffAtOn{};  // reuse off at on's frames (where measured)
+
+  double ratio(int eye) const { return relMseOff[size_t(eye)] / relMseOn[size_t(eye)]; }
+  double trimmedRatio(int eye) const { return trimmedOff[size_t(eye)] / trimmedOn[size_t(eye)]; }
+};
+
 struct Row {
   std::string scene;
   EyeTimes hybridOff, hybridOn, ptOn;
@@ -76,10 +90,8 @@ struct Row {
   double ownShadowSecondMs = 0.0;        // reuse on, own shadow rays: the second eye
   std::array<double, 2> shadowAnswerRelMse{}, shadowAnswerRefRelMse{};  // 3. above
   std::array<double, 2> ptOffMs{};
-  int framesOff = 0, framesOn = 0;       // per seed (on: the mean over seeds)
-  double frameMsOff = 0, frameMsOn = 0;  // mean tracer time per frame
-  std::array<double, 2> relMseOff{}, relMseOn{}, trimmedOff{}, trimmedOn{};
-  std::array<double, 2> trimmedOffAtOn{};  // reuse off at on's frames (equal time only)
+  // At --frames frames off, then (equal time only) at 3/4 and 5/4 of them.
+  std::vector<EqualTime> equal;
   double correlationOff = 0.0, correlationOn = 0.0;
   size_t pairs = 0;
   bool equalFrames = false;  // Args::equalFrames
@@ -271,33 +283,45 @@ double noiseCorrelation(HybridRenderer& r, const View& view, const Args& a, bool
   return cov / std::sqrt(vl * vr);
 }
 
-void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, const Args& a,
-                    Row& row) {
-  const harness::Reference ref =
-      harness::loadOrRenderReference({&scene, view, a.width, a.height, 8}, a.referenceSpp);
+// Equal time at 'frames' frames off (equal frames where a.equalFrames); 'offAtOn': also reuse
+// off at on's frame count (section 2 above).
+EqualTime measureEqualTime(HybridRenderer& r, const View& view, const Args& a,
+                           const harness::Reference& ref, int frames, bool offAtOnToo) {
+  EqualTime q;
   // Means over seeds: one caustic firefly can hold most of a 32-frame relMSE (spheres), so
   // one seed's ratio says little.
   for (int k = 0; k < a.seeds; ++k) {
     const uint32_t seed = uint32_t(k + 1);
-    const Accumulated off = accumulate(r, view, a, false, a.frames, 0.0, seed);
-    const Accumulated on = a.equalFrames ? accumulate(r, view, a, true, a.frames, 0.0, seed)
+    const Accumulated off = accumulate(r, view, a, false, frames, 0.0, seed);
+    const Accumulated on = a.equalFrames ? accumulate(r, view, a, true, frames, 0.0, seed)
                                          : accumulate(r, view, a, true, 0, off.tracerMs, seed);
-    row.framesOn += on.frames;
-    row.frameMsOff += off.tracerMs / off.frames / a.seeds;
-    row.frameMsOn += on.tracerMs / on.frames / a.seeds;
+    q.framesOn += on.frames;
+    q.frameMsOff += off.tracerMs / off.frames / a.seeds;
+    q.frameMsOn += on.tracerMs / on.frames / a.seeds;
     for (int e = 0; e < 2; ++e) {
-      row.relMseOff[e] += relMse(off.mean[e], ref.eyes[e]) / a.seeds;
-      row.relMseOn[e] += relMse(on.mean[e], ref.eyes[e]) / a.seeds;
-      row.trimmedOff[e] += trimmedRelMse(off.mean[e], ref.eyes[e]) / a.seeds;
-      row.trimmedOn[e] += trimmedRelMse(on.mean[e], ref.eyes[e]) / a.seeds;
+      q.relMseOff[e] += relMse(off.mean[e], ref.eyes[e]) / a.seeds;
+      q.relMseOn[e] += relMse(on.mean[e], ref.eyes[e]) / a.seeds;
+      q.trimmedOff[e] += trimmedRelMse(off.mean[e], ref.eyes[e]) / a.seeds;
+      q.trimmedOn[e] += trimmedRelMse(on.mean[e], ref.eyes[e]) / a.seeds;
     }
-    if (a.equalFrames) continue;
+    if (!offAtOnToo) continue;
     const Accumulated offAtOn = accumulate(r, view, a, false, on.frames, 0.0, seed);
     for (int e = 0; e < 2; ++e)
-      row.trimmedOffAtOn[e] += trimmedRelMse(offAtOn.mean[e], ref.eyes[e]) / a.seeds;
+      q.trimmedOffAtOn[e] += trimmedRelMse(offAtOn.mean[e], ref.eyes[e]) / a.seeds;
   }
-  row.framesOff = a.frames;
-  row.framesOn = (row.framesOn + a.seeds / 2) / a.seeds;
+  q.framesOff = frames;
+  q.framesOn = (q.framesOn + a.seeds / 2) / a.seeds;
+  return q;
+}
+
+void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, const Args& a,
+                    Row& row) {
+  const harness::Reference ref =
+      harness::loadOrRenderReference({&scene, view, a.width, a.height, 8}, a.referenceSpp);
+  row.equal.push_back(measureEqualTime(r, view, a, ref, a.frames, !a.equalFrames));
+  if (!a.equalFrames)
+    for (const int frames : {a.frames * 3 / 4, a.frames * 5 / 4})
+      if (frames > 0) row.equal.push_back(measureEqualTime(r, view, a, ref, frames, false));
   const Accumulated answers = accumulate(r, view, a, true, a.frames, 0.0, 1);
   const Accumulated ownRays = accumulate(r, view, a, true, a.frames, 0.0, 1, true);
   for (int e = 0; e < 2; ++e) {
@@ -311,6 +335,35 @@ void measureQuality(HybridRenderer& r, const Scene& scene, const View& view, con
   row.correlationOn = noiseCorrelation(r, view, a, true, pairs, ref);
 }
 
+// The mean over the frame counts of an eye's equal-time ratio (trimmed or not).
+double meanRatio(const std::vector<EqualTime>& equal, int eye, bool trimmed) {
+  double sum = 0.0;
+  for (const EqualTime& q : equal) sum += trimmed ? q.trimmedRatio(eye) : q.ratio(eye);
+  return sum / double(equal.size());
+}
+
+// Equal time's parts at --frames (section 2 above), then its figures at the other counts
+// and the mean over all: a power of two (32) is a whole Sobol net, so off's error there is
+// lower for its count than at most others (10-15 % on atrium), and one count alone is not
+// the figure.
+void printEqualTimeParts(const std::vector<EqualTime>& equal) {
+  const EqualTime& q = equal.front();
+  const std::array<double, 2> bought{q.trimmedOff[0] / q.trimmedOffAtOn[0],
+                                     q.trimmedOff[1] / q.trimmedOffAtOn[1]};
+  std::printf(
+      "         reuse off at on's frames: trimmed off/off %.2f/%.2f, what the frames alone "
+      "buy; trimmed on over it %.2f/%.2f, what reuse costs per frame\n",
+      bought[0], bought[1], q.trimmedRatio(0) / bought[0], q.trimmedRatio(1) / bought[1]);
+  std::printf("         equal time at other counts off:");
+  for (size_t k = 1; k < equal.size(); ++k)
+    std::printf(" %d frames (on %d) %.2f/%.2f, trimmed %.2f/%.2f;", equal[k].framesOff,
+                equal[k].framesOn, equal[k].ratio(0), equal[k].ratio(1), equal[k].trimmedRatio(0),
+                equal[k].trimmedRatio(1));
+  std::printf(" mean of the %zu counts %.2f/%.2f, trimmed %.2f/%.2f\n", equal.size(),
+              meanRatio(equal, 0, false), meanRatio(equal, 1, false), meanRatio(equal, 0, true),
+              meanRatio(equal, 1, true));
+}
+
 void print(const Row& r, std::ofstream& csv) {
   const auto ratio = [](const std::array<double, 2>& ms) { return ms[1] / ms[0]; };
   std::printf(
@@ -321,26 +374,18 @@ void print(const Row& r, std::ofstream& csv) {
       ratio(r.hybridOn.ms), r.hybridOn.reusedShare, r.hybridOn.ownBounceShare, r.hybridWarmMs[0],
       r.hybridWarmMs[1], ratio(r.hybridWarmMs), r.ptOffMs[0], r.ptOffMs[1], r.ptOn.ms[0],
       r.ptOn.ms[1], ratio(r.ptOn.ms), r.ptOn.reusedShare);
+  const EqualTime& q = r.equal.front();
   std::printf(
       "         %s: off %d frames (%.1f ms each), on %d (%.1f ms); relMSE L/R off "
       "%.4f/%.4f, on %.4f/%.4f (off/on %.2f/%.2f); trimmed off/on %.2f/%.2f\n",
-      r.equalFrames ? "equal frames" : "equal time", r.framesOff, r.frameMsOff, r.framesOn,
-      r.frameMsOn, r.relMseOff[0], r.relMseOff[1], r.relMseOn[0], r.relMseOn[1],
-      r.relMseOff[0] / r.relMseOn[0], r.relMseOff[1] / r.relMseOn[1],
-      r.trimmedOff[0] / r.trimmedOn[0], r.trimmedOff[1] / r.trimmedOn[1]);
-  if (!r.equalFrames) {
-    const std::array<double, 2> bought{r.trimmedOff[0] / r.trimmedOffAtOn[0],
-                                       r.trimmedOff[1] / r.trimmedOffAtOn[1]};
-    std::printf(
-        "         reuse off at on's frames: trimmed off/off %.2f/%.2f, what the frames alone "
-        "buy; trimmed on over it %.2f/%.2f, what reuse costs per frame\n",
-        bought[0], bought[1], r.trimmedOff[0] / r.trimmedOn[0] / bought[0],
-        r.trimmedOff[1] / r.trimmedOn[1] / bought[1]);
-  }
+      r.equalFrames ? "equal frames" : "equal time", q.framesOff, q.frameMsOff, q.framesOn,
+      q.frameMsOn, q.relMseOff[0], q.relMseOff[1], q.relMseOn[0], q.relMseOn[1], q.ratio(0),
+      q.ratio(1), q.trimmedRatio(0), q.trimmedRatio(1));
+  if (!r.equalFrames) printEqualTimeParts(r.equal);
   std::printf(
       "         the left's shadow answers: second eye %.1f ms with own shadow rays; relMSE "
       "L/R of %d frames against own rays %.2g/%.2g (against the reference %.4f/%.4f)\n",
-      r.ownShadowSecondMs, r.framesOff, r.shadowAnswerRelMse[0], r.shadowAnswerRelMse[1],
+      r.ownShadowSecondMs, q.framesOff, r.shadowAnswerRelMse[0], r.shadowAnswerRelMse[1],
       r.shadowAnswerRefRelMse[0], r.shadowAnswerRefRelMse[1]);
   std::printf(
       "         noise correlation of the eyes at %zu corresponding pixels: off %.3f, "
@@ -350,14 +395,16 @@ void print(const Row& r, std::ofstream& csv) {
       << ',' << r.hybridOn.ms[1] << ',' << ratio(r.hybridOn.ms) << ',' << r.hybridOn.reusedShare
       << ',' << r.hybridOn.ownBounceShare << ',' << r.ptOffMs[0] << ',' << r.ptOffMs[1] << ','
       << r.ptOn.ms[0] << ',' << r.ptOn.ms[1] << ',' << ratio(r.ptOn.ms) << ',' << r.ptOn.reusedShare
-      << ',' << r.framesOff << ',' << r.framesOn << ',' << r.relMseOff[0] << ',' << r.relMseOff[1]
-      << ',' << r.relMseOn[0] << ',' << r.relMseOn[1] << ',' << r.trimmedOff[0] << ','
-      << r.trimmedOff[1] << ',' << r.trimmedOn[0] << ',' << r.trimmedOn[1] << ','
+      << ',' << q.framesOff << ',' << q.framesOn << ',' << q.relMseOff[0] << ',' << q.relMseOff[1]
+      << ',' << q.relMseOn[0] << ',' << q.relMseOn[1] << ',' << q.trimmedOff[0] << ','
+      << q.trimmedOff[1] << ',' << q.trimmedOn[0] << ',' << q.trimmedOn[1] << ','
       << r.correlationOff << ',' << r.correlationOn << ',' << r.hybridWarmMs[0] << ','
       << r.hybridWarmMs[1] << ',' << ratio(r.hybridWarmMs) << ',' << r.ownShadowSecondMs << ','
       << r.shadowAnswerRelMse[0] << ',' << r.shadowAnswerRelMse[1] << ','
       << r.shadowAnswerRefRelMse[0] << ',' << r.shadowAnswerRefRelMse[1] << ','
-      << r.trimmedOffAtOn[0] << ',' << r.trimmedOffAtOn[1] << '\n';
+      << q.trimmedOffAtOn[0] << ',' << q.trimmedOffAtOn[1] << ',' << meanRatio(r.equal, 0, false)
+      << ',' << meanRatio(r.equal, 1, false) << ',' << meanRatio(r.equal, 0, true) << ','
+      << meanRatio(r.equal, 1, true) << '\n';
 }
 
 const char* const kUsage =
@@ -371,8 +418,9 @@ const char* const kUsage =
     "against as many as fit their tracer time on; means over K seeds, 4) against a pt\n"
     "reference of S spp (1024); the bias of the left's shadow answers (reused samples tracing\n"
     "their own shadow rays instead: time and relMSE); the correlation of the eyes' relative\n"
-    "noise at corresponding pixels. --equal-frames: reuse on gets the F frames off gets (its\n"
-    "error per frame, not per time).\n"
+    "noise at corresponding pixels. Equal time also at 3F/4 and 5F/4 frames off, and the\n"
+    "mean of the three. --equal-frames: reuse on gets the F frames off gets (its error per\n"
+    "frame, not per time; F alone).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
 int run(const Options& o) {
@@ -399,7 +447,9 @@ int run(const Options& o) {
          "hybrid_warm_second_over_first,hybrid_own_shadow_rays_second_ms,"
          "shadow_answer_relmse_left,shadow_answer_relmse_right,"
          "shadow_answer_ref_relmse_left,shadow_answer_ref_relmse_right,"
-         "trimmed_off_at_on_frames_left,trimmed_off_at_on_frames_right\n";
+         "trimmed_off_at_on_frames_left,trimmed_off_at_on_frames_right,"
+         "equal_time_mean_left,equal_time_mean_right,"
+         "trimmed_equal_time_mean_left,trimmed_equal_time_mean_right\n";
   for (const std::string& name : builtinSceneNames()) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
