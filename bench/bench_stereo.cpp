@@ -17,8 +17,8 @@
 //    more or less where one count is a power of two, a whole Sobol net); the equal-time
 //    figure over it is what reuse costs per frame. Then equal time again at 3/4 and 5/4 of
 //    --frames, and the mean of the three counts' ratios: at 32, a whole Sobol net, off's
-//    error is 10-15 % below its 1/N line on atrium (24, 38, 40, 51 and 62 frames lie on it),
-//    which lowered that count's ratio by as much; the mean does not rest on one count.
+//    N x error on atrium is 5-15 % below that at 24, 38, 40, 51 and 62 frames, which lowered
+//    that count's ratio by as much; the mean does not rest on one count.
 // 3. The left's shadow answers (trace/stereo_reuse.h, "The approximations"): reuse on with
 //    every reused sample tracing its own shadow ray instead (TraceSettings::
 //    reusedOwnShadowRays), the same numbers: the second eye's tracer time, timed with the
@@ -344,7 +344,7 @@ double meanRatio(const std::vector<EqualTime>& equal, int eye, bool trimmed) {
 
 // Equal time's parts at --frames (section 2 above), then its figures at the other counts
 // and the mean over all: a power of two (32) is a whole Sobol net, so off's error there is
-// lower for its count than at most others (10-15 % on atrium), and one count alone is not
+// lower for its count than at most others (5-15 % on atrium), and one count alone is not
 // the figure.
 void printEqualTimeParts(const std::vector<EqualTime>& equal) {
   const EqualTime& q = equal.front();
