@@ -94,11 +94,12 @@ VertexRays shadeVertex(const TraceContext& ctx, PathState& path, const VertexNum
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce);
 
 // shadeVertex in steps around its BSDF, so that the batched tracer prepares, evaluates and
-// samples the BSDFs of a whole bounce at once (trace/bsdf_lanes.h): startVertex (the
-// albedos, the frame, NEE's light sample), prepareVertex (the BSDF, and its value and pdf
-// towards the light and a reused bounce's direction), shadeVertexHead (NEE's shadow ray, stereo
-// reuse's term) returns whether the vertex goes on to a bounce ray; if so, shadeVertexTail takes
-// sampleBsdf(vs.bsdf, u.bsdf) and makes it. shadeVertex is the steps in that order.
+// samples the BSDFs of a whole bounce at once (trace/bsdf_lanes.h): drawLight (NEE's light
+// sample), startVertex (the albedos, the frame, the light in it), prepareVertex (the BSDF,
+// and its value and pdf towards the light and a reused bounce's direction), shadeVertexHead
+// (NEE's shadow ray, stereo reuse's term) returns whether the vertex goes on to a bounce
+// ray; if so, shadeVertexTail takes sampleBsdf(vs.bsdf, u.bsdf) and makes it. shadeVertex is
+// the steps in that order.
 struct VertexShading {
   Frame frame;
   glm::vec3 wo{0.0f};  // in the shading frame
@@ -118,8 +119,14 @@ struct VertexShading {
   bool splitAnswered = false;
   SplitAnswers split;
 };
-void startVertex(const TraceContext& ctx, PathState& path, const VertexNumbers& u,
-                 PathResult& result, VertexShading& vs);
+// NEE's light sample at the path's vertex (vs.light), the step before startVertex. A loop
+// of its own in a batch: inside startVertex, an area light's sample (its square root and the
+// divisions by the distance that wait on it) was a latency chain the out-of-order core could
+// not overlap with the next vertex (sampleTriangle, 6 % of cornell's tracer, stalled on its
+// divisions, perf annotate).
+void drawLight(const TraceContext& ctx, const PathState& path, const VertexNumbers& u,
+               VertexShading& vs);
+void startVertex(PathState& path, PathResult& result, VertexShading& vs);
 void prepareVertex(const BsdfParams& params, VertexShading& vs);
 // A first vertex's specular albedo (the denoiser's demodulation), from its prepared BSDF;
 // nothing at later depths. A step of its own between prepareVertex and shadeVertexHead, so

@@ -82,22 +82,11 @@ bool leftShadowAnswers(const PathState& p) {
   return p.reuse && p.reuse->shadowTraced && !p.ownShadowRay;
 }
 
-// Next-event estimation's light sample at the path's vertex, made before the BSDF is
-// prepared: vs.light, its direction in the shading frame and whether it leaves on the side
-// that frame says (vs.lit).
-void sampleLight(const TraceContext& ctx, const PathState& p, const VertexNumbers& u,
-                 const Frame& frame, VertexShading& vs) {
+// Next-event estimation's light: its direction in the shading frame and whether it leaves
+// on the side that frame says (vs.lit). vs.light is drawLight's.
+void placeLight(const PathState& p, const Frame& frame, VertexShading& vs) {
   vs.lit = false;
-  if (ctx.lights.empty()) return;
-  // A reused right sample draws the left's numbers: a light at infinity gives the left's
-  // sample again, so it is taken from the record (stereo_reuse.h); a punctual one is
-  // recorded for leftShadowEdge and sampled again from here.
-  LightSample& ls = vs.light;
-  if (p.reuse && p.reuse->light.valid() && p.reuse->light.atInfinity())
-    ls = p.reuse->light;
-  else
-    ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint, ls);
-  if (p.record && p.depth == 0 && (ls.atInfinity() || ls.isDelta)) p.record->light = ls;
+  const LightSample& ls = vs.light;
   if (!ls.valid()) return;
   vs.wiL = frame.toLocal(ls.direction);
   vs.lit = sameSide(ls.direction, p.hit, vs.wiL);
@@ -304,8 +293,24 @@ VertexDraws vertexDraws(const TraceContext& ctx, uint32_t depth) {
                                    int(depth) + 1 >= ctx.settings.russianRouletteDepth};
 }
 
-void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, PathResult& result,
-                 VertexShading& vs) {
+void drawLight(const TraceContext& ctx, const PathState& p, const VertexNumbers& u,
+               VertexShading& vs) {
+  LightSample& ls = vs.light;
+  if (ctx.lights.empty()) {
+    ls = LightSample{};
+    return;
+  }
+  // A reused right sample draws the left's numbers: a light at infinity gives the left's
+  // sample again, so it is taken from the record (stereo_reuse.h); a punctual one is
+  // recorded for leftShadowEdge and sampled again from here.
+  if (p.reuse && p.reuse->light.valid() && p.reuse->light.atInfinity())
+    ls = p.reuse->light;
+  else
+    ctx.lights.sample(p.hit.position, u.lightPick, u.lightPoint, ls);
+  if (p.record && p.depth == 0 && (ls.atInfinity() || ls.isDelta)) p.record->light = ls;
+}
+
+void startVertex(PathState& p, PathResult& result, VertexShading& vs) {
   if (!p.albedoSet && !showsWhatIsBeyond(p.hit.bsdf)) {
     result.albedo = p.hit.bsdf.baseColor;
     p.albedoSet = true;
@@ -323,7 +328,7 @@ void startVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u, 
   frame.setZ(p.hit.shadingNormal);
   vs.frame = frame;
   vs.wo = frame.toLocal(p.wo);
-  sampleLight(ctx, p, u, frame, vs);
+  placeLight(p, frame, vs);
   vs.reusing = p.reuse && p.reuse->sampled;
   vs.splitAnswered = false;
   if (vs.reusing) vs.wiReused = frame.toLocal(p.reuse->dir);
@@ -409,7 +414,8 @@ VertexRays shadeVertexTail(const TraceContext& ctx, PathState& p, const VertexNu
 VertexRays shadeVertex(const TraceContext& ctx, PathState& p, const VertexNumbers& u,
                        PathResult& result, ShadowRay& shadow, BatchRay& bounce) {
   VertexShading vs;
-  startVertex(ctx, p, u, result, vs);
+  drawLight(ctx, p, u, vs);
+  startVertex(p, result, vs);
   prepareVertex(p.hit.bsdf, vs);
   shadeSpecularAlbedo(p, vs, result);
   if (!shadeVertexHead(ctx, p, u, result, shadow, vs)) return vs.rays;

@@ -33,8 +33,9 @@ void queuePrepare(const BsdfParams& params, VertexShading& vs, bool reused, Wave
   job.eval2 = &vs.reused;
 }
 
-// Shading stage: every active path's vertex, in five passes: each vertex's start (its
-// frame and NEE's light sample), the BSDF stage's first half (every vertex without glass or
+// Shading stage: every active path's vertex, in six passes: each vertex's light sample for
+// NEE (a loop of its own: trace/path_stages.h, drawLight), its start (its frame and the
+// light's place in it), the BSDF stage's first half (every vertex without glass or
 // layers prepared, and evaluated towards its light, in SIMD lanes: trace/bsdf_lanes.h),
 // each vertex's head (NEE's shadow ray, stereo reuse), the second half (their BSDFs
 // sampled in lanes), then each vertex's bounce ray. Glass and layered vertices take the
@@ -51,10 +52,11 @@ void shadeAll(const TraceContext& ctx, std::span<PathState> paths, std::span<Pat
   const size_t n = s.active.size();
   growTo(s.shading, n);
   growTo(s.sampling, n);
+  for (size_t j = 0; j < n; ++j) drawLight(ctx, paths[s.active[j]], s.numbers[j], s.shading[j]);
   for (size_t j = 0; j < n; ++j) {
     const uint32_t k = s.active[j];
     VertexShading& vs = s.shading[j];
-    startVertex(ctx, paths[k], s.numbers[j], results[k], vs);
+    startVertex(paths[k], results[k], vs);
     const BsdfParams& params = paths[k].hit.bsdf;
     // A reused right sample that needs a ray is rare here (finishReusedSamples takes the
     // others): its second direction is evaluated one by one.
@@ -203,10 +205,11 @@ void finishReusedSamples(const TraceContext& ctx, std::span<PathState> paths,
   const size_t n = paths.size();
   growTo(s.shading, n);
   s.prepareJobs.clear();
+  for (size_t i = 0; i < n; ++i) drawLight(ctx, paths[i], paths[i].reuse->numbers, s.shading[i]);
   for (size_t i = 0; i < n; ++i) {
     VertexShading& vs = s.shading[i];
     results[i] = PathResult{};
-    startVertex(ctx, paths[i], paths[i].reuse->numbers, results[i], vs);
+    startVertex(paths[i], results[i], vs);
     const BsdfParams& params = paths[i].hit.bsdf;
     if (plainBsdf(params))
       queuePrepare(params, vs, vs.reusing, s);
