@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -52,6 +53,20 @@ struct Config {
   BatchCall batchCall = BatchCall::Stream;  // how the wavefront tracer calls Embree
 };
 
+// The time a row keeps for a run it did not make (--render-only makes no replays).
+constexpr double kUntimed = 1e30;
+
+// Mrays/s of 'rays' in 'seconds', NaN where they were not timed: "nan" in the table and the
+// CSV, and in the ratios taken of it, rather than a number.
+double mraysOf(uint64_t rays, double seconds) {
+  return seconds < kUntimed ? double(rays) / seconds * 1e-6
+                            : std::numeric_limits<double>::quiet_NaN();
+}
+
+double msOf(double seconds) {
+  return seconds < kUntimed ? seconds * 1e3 : std::numeric_limits<double>::quiet_NaN();
+}
+
 struct Row {
   std::string scene;
   int threads = 0;
@@ -62,13 +77,13 @@ struct Row {
   uint64_t imageHash = 0;  // FNV-1a of the colour buffer: optimisations must keep it
 
   uint64_t rays() const { return intersectRays + occludedRays; }
-  double photovrMrays() const { return rays() / renderSeconds * 1e-6; }
-  double rawMrays() const { return rays() / replaySeconds * 1e-6; }
-  double rawIntersectMrays() const { return intersectRays / replayIntersectSeconds * 1e-6; }
-  double rawOccludedMrays() const { return occludedRays / replayOccludedSeconds * 1e-6; }
-  double rawUnfilteredMrays() const { return rays() / replayUnfilteredSeconds * 1e-6; }
-  double lambertFloorMrays() const { return rays() / lambertFloorSeconds * 1e-6; }
-  double bsdfFloorMrays() const { return rays() / bsdfFloorSeconds * 1e-6; }
+  double photovrMrays() const { return mraysOf(rays(), renderSeconds); }
+  double rawMrays() const { return mraysOf(rays(), replaySeconds); }
+  double rawIntersectMrays() const { return mraysOf(intersectRays, replayIntersectSeconds); }
+  double rawOccludedMrays() const { return mraysOf(occludedRays, replayOccludedSeconds); }
+  double rawUnfilteredMrays() const { return mraysOf(rays(), replayUnfilteredSeconds); }
+  double lambertFloorMrays() const { return mraysOf(rays(), lambertFloorSeconds); }
+  double bsdfFloorMrays() const { return mraysOf(rays(), bsdfFloorSeconds); }
 };
 
 double seconds(std::chrono::steady_clock::time_point since) {
@@ -135,7 +150,7 @@ struct Replays {
 template <typename Render>
 void timeAll(Row& row, Render&& render, const Replays& r, int repeats) {
   row.renderSeconds = row.replaySeconds = row.replayIntersectSeconds = row.replayOccludedSeconds =
-      row.replayUnfilteredSeconds = row.lambertFloorSeconds = row.bsdfFloorSeconds = 1e30;
+      row.replayUnfilteredSeconds = row.lambertFloorSeconds = row.bsdfFloorSeconds = kUntimed;
   for (int k = 0; k < repeats; ++k) {
     timeBest(row.renderSeconds, render);
     if (r.all.empty()) continue;
@@ -203,8 +218,8 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
     out << r.scene << ',' << r.threads << ',' << r.rays() << ',' << r.intersectRays << ','
         << r.occludedRays << ',' << r.photovrMrays() << ',' << r.rawMrays() << ','
         << r.rawIntersectMrays() << ',' << r.rawOccludedMrays() << ',' << r.rawUnfilteredMrays()
-        << ',' << r.photovrMrays() / r.rawMrays() << ',' << r.renderSeconds * 1e3 << ','
-        << r.replaySeconds * 1e3 << ',' << r.buildMs << ',' << hash << ',' << r.lambertFloorMrays()
+        << ',' << r.photovrMrays() / r.rawMrays() << ',' << msOf(r.renderSeconds) << ','
+        << msOf(r.replaySeconds) << ',' << r.buildMs << ',' << hash << ',' << r.lambertFloorMrays()
         << ',' << r.bsdfFloorMrays() << '\n';
   }
   if (!out) throw std::runtime_error("cannot write " + file.string());
