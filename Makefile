@@ -45,7 +45,7 @@ bench: build
 	./$(BUILD)/bench/photovr_bench_passes --out out/bench
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build. `make asan` runs the whole suite under
-# it (~15 min of tests on 2 cores); `make test` runs the modules in SANITIZED_MODULES, the part
+# it (24 min of tests on 2 cores); `make test` runs the modules in SANITIZED_MODULES, the part
 # that fits CI's time beside the release suite: every input reader and its fuzz tests
 # (core: glTF, images, environment maps; hmd: HID reports, recordings, pose scripts) and the
 # whole CPU tracer (trace). Their GL-bound neighbours (gl, hybrid, app) spend most of their

@@ -16,49 +16,56 @@
 namespace photovr {
 namespace {
 
-// Each eye, reuse on against off, every built-in scene: region z-test of 128 frames at
+// Each eye, reuse on against off, one test per built-in scene (so that they run side by
+// side, and each fits its time under the sanitizers): region z-test of 128 frames at
 // 32 x 36 (tests/trace/image_statistics.h: 17 tests at |z| < 4); with reuse on an eye reuses
 // on every other frame. The frames' G-buffers move with the jitter as a headset's do, so
 // the partner test runs on rasterized hits.
-TEST(StereoReuseHybrid, EachEyeConvergesToItsOwnPathsImage) {
+class StereoReuseHybrid : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StereoReuseHybrid, EachEyeConvergesToItsOwnPathsImage) {
   constexpr int kW = 32, kH = 36, kFrames = 128;
   testing::osmesaContext();
-  for (const std::string& name : builtinSceneNames()) {
-    const Scene scene = makeBuiltinScene(name);
-    StereoRig rig;
-    rig.head = poseOf(scene.cameras.at(0));
-    HybridRenderer renderer(scene, kW, kH, TraceSettings{});
-    std::array<std::array<std::vector<std::vector<glm::vec3>>, 2>, 2> frames;  // [on][eye]
-    uint64_t reused = 0, paths = 0;
-    for (int on = 0; on < 2; ++on) {
-      TraceSettings s;
-      s.stereoReuse = on == 1;
-      renderer.setSettings(s);
-      for (int k = 0; k < kFrames; ++k) {
-        const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, uint32_t(k));
-        const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, kW, kH, jitter),
-                                               rig.eye(Eye::Right, kW, kH, jitter)};
-        FrameTimes t;
-        auto img = renderer.render(eyes, 2, uint32_t(k), &t);
-        if (on) reused += t.turnReusedPaths[1], paths += t.turnPaths[1];
-        for (int e = 0; e < 2; ++e) frames[on][e].push_back(img[e].color);
-        renderer.recycle(std::move(img));
-      }
+  const std::string& name = GetParam();
+  const Scene scene = makeBuiltinScene(name);
+  StereoRig rig;
+  rig.head = poseOf(scene.cameras.at(0));
+  HybridRenderer renderer(scene, kW, kH, TraceSettings{});
+  std::array<std::array<std::vector<std::vector<glm::vec3>>, 2>, 2> frames;  // [on][eye]
+  uint64_t reused = 0, paths = 0;
+  for (int on = 0; on < 2; ++on) {
+    TraceSettings s;
+    s.stereoReuse = on == 1;
+    renderer.setSettings(s);
+    for (int k = 0; k < kFrames; ++k) {
+      const glm::vec2 jitter = samplePosition(SamplerKind::Sobol, uint32_t(k));
+      const std::array<EyeCamera, 2> eyes = {rig.eye(Eye::Left, kW, kH, jitter),
+                                             rig.eye(Eye::Right, kW, kH, jitter)};
+      FrameTimes t;
+      auto img = renderer.render(eyes, 2, uint32_t(k), &t);
+      if (on) reused += t.turnReusedPaths[1], paths += t.turnPaths[1];
+      for (int e = 0; e < 2; ++e) frames[on][e].push_back(img[e].color);
+      renderer.recycle(std::move(img));
     }
-    for (int e = 0; e < 2; ++e) {
-      const double z =
-          testing::maxRegionZ(testing::statisticsOf(frames[1][e], kW, kH),
-                              testing::statisticsOf(frames[0][e], kW, kH), testing::kRegions);
-      EXPECT_LT(z, testing::kMaxZ) << name << " eye " << e;
-      std::printf("  %-8s eye %d: max region |z| %.2f\n", name.c_str(), e, z);
-    }
-    // Most of the second eye sees what the first eye sees; the rest (the other eye's hidden
-    // surfaces, the field's edge, glass) traces its own paths.
-    EXPECT_GT(double(reused), 0.5 * double(paths)) << name;
-    std::printf("  %-8s reused %.3f of the second eye's paths\n", name.c_str(),
-                double(reused) / double(paths));
   }
+  for (int e = 0; e < 2; ++e) {
+    const double z =
+        testing::maxRegionZ(testing::statisticsOf(frames[1][e], kW, kH),
+                            testing::statisticsOf(frames[0][e], kW, kH), testing::kRegions);
+    EXPECT_LT(z, testing::kMaxZ) << name << " eye " << e;
+    std::printf("  %-8s eye %d: max region |z| %.2f\n", name.c_str(), e, z);
+  }
+  // Most of the second eye sees what the first eye sees; the rest (the other eye's hidden
+  // surfaces, the field's edge, glass) traces its own paths.
+  EXPECT_GT(double(reused), 0.5 * double(paths)) << name;
+  std::printf("  %-8s reused %.3f of the second eye's paths\n", name.c_str(),
+              double(reused) / double(paths));
 }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, StereoReuseHybrid, ::testing::ValuesIn(builtinSceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
 
 }  // namespace
 }  // namespace photovr
