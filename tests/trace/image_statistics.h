@@ -2,6 +2,7 @@
 // image, each the mean of independent frames, compared region by region with a z-test.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -61,6 +62,41 @@ inline double maxRegionZ(const FrameStatistics& a, const FrameStatistics& b, int
     for (int rx = 0; rx < regions; ++rx)
       test(rx * a.width / regions, (rx + 1) * a.width / regions, ry * a.height / regions,
            (ry + 1) * a.height / regions);
+  return worst;
+}
+
+// The same test on paired frames: frame k of 'a' and frame k of 'b' draw the same numbers
+// (one seed, one frame index), so their difference is far less noisy than either. Each
+// region's per-frame difference of summed luminance, D_k, is one sample; z = mean D /
+// sqrt(var D / K) with the sample variance over the K frames, as the test above treats frames
+// as independent. A region whose frames all agree (D_k = 0: sky, black) must have mean 0.
+inline double maxPairedRegionZ(const std::vector<std::vector<glm::vec3>>& a,
+                               const std::vector<std::vector<glm::vec3>>& b, int width, int height,
+                               int regions) {
+  const size_t frames = std::min(a.size(), b.size());
+  double worst = 0.0;
+  auto test = [&](int x0, int x1, int y0, int y1) {
+    double sum = 0.0, sq = 0.0;
+    for (size_t k = 0; k < frames; ++k) {
+      double d = 0.0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const size_t i = size_t(y) * width + x;
+          d += double(luminance(a[k][i])) - double(luminance(b[k][i]));
+        }
+      sum += d, sq += d * d;
+    }
+    const double n = double(frames), mean = sum / n;
+    const double varianceOfMean = std::max(0.0, (sq - n * mean * mean) / (n - 1.0)) / n;
+    const double z = varianceOfMean > 0.0 ? std::abs(mean) / std::sqrt(varianceOfMean)
+                                          : (std::abs(mean) > 1e-9 ? 1e30 : 0.0);
+    worst = std::max(worst, z);
+  };
+  test(0, width, 0, height);
+  for (int ry = 0; ry < regions; ++ry)
+    for (int rx = 0; rx < regions; ++rx)
+      test(rx * width / regions, (rx + 1) * width / regions, ry * height / regions,
+           (ry + 1) * height / regions);
   return worst;
 }
 
