@@ -60,18 +60,18 @@ glm::vec3 transmittance(const Scene& scene, uint32_t medium, float distance) {
 
 // The shadow ray from the hit's offset origin to the light point itself (not along the
 // direction sampled from the unoffset hit): an offset of ~1e-4 m on a large triangle would
-// otherwise carry the ray into the light's plane before the shortened end.
+// otherwise carry the ray into the light's plane before the shortened end. Embree takes an
+// unnormalised direction (RTCRay(3): "The ray direction does not have to be normalized"), so
+// the ray is the offset segment itself, t in [0, 1], with no square root or division; no
+// reader of a shadow ray needs its length (its answer is blocked or not).
 void setShadowRay(BatchRay& ray, const SurfaceHit& hit, const LightSample& ls) {
   const glm::vec3 origin = offsetRayOrigin(hit, ls.direction);
-  glm::vec3 dir = ls.direction;
-  float tfar = ls.distance;
-  if (std::isfinite(ls.distance)) {
-    const glm::vec3 toLight = hit.position + ls.direction * ls.distance - origin;
-    tfar = glm::length(toLight);
-    dir = toLight / tfar;
-    if (ls.isArea) tfar *= 1.0f - kShadowRayShorten;
+  if (!std::isfinite(ls.distance)) {
+    ray.set(origin, ls.direction, 0.0f, ls.distance);
+    return;
   }
-  ray.set(origin, dir, 0.0f, tfar);
+  const glm::vec3 toLight = hit.position + ls.direction * ls.distance - origin;
+  ray.set(origin, toLight, 0.0f, ls.isArea ? 1.0f - kShadowRayShorten : 1.0f);
 }
 
 // A reused right sample aims its NEE at the left sample's light point (the same numbers);
