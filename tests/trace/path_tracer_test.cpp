@@ -92,6 +92,63 @@ TEST(PathTracer, PointLightOverAPlaneGivesCosOverRSquaredAtEveryAngle) {
   }
 }
 
+// A square's placement at height y over the origin, facing down (-Y).
+glm::mat4 facingDownAt(float y) {
+  return glm::rotate(glm::translate(glm::mat4(1.0f), {0, y, 0}), float(M_PI / 2),
+                     glm::vec3(1, 0, 0));
+}
+
+// A shadow ray runs the whole way from the shaded point to the light's point: a 2 cm black
+// square anywhere between them, up to 1 cm from the light, leaves the point unlit, and one
+// 1 cm beyond the light does not touch it. The view is grazing enough that the estimate's
+// own ray to the floor point passes beside every square.
+TEST(PathTracer, AnOccluderAnywhereUpToThePointLightCastsItsShadow) {
+  const Material m = diffuseMaterial(glm::vec3(0.6f));
+  Light l;
+  l.position = {0, 1, 0};
+  l.intensity = 5.0f;
+  TraceSettings settings;
+  settings.maxBounces = 0;  // NEE alone; BSDF rays escape into black
+  const glm::vec3 wo = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.3f));
+  const double lit = bsdfCos(materialOf(m), wo, glm::dvec3(0, 1, 0)) * l.intensity;  // r = 1
+  for (float y : {0.05f, 0.5f, 0.9f, 0.99f, 1.01f}) {
+    Scene s = floorScene(m);
+    s.materials.push_back(diffuseMaterial(glm::vec3(0.0f)));
+    addSquare(s, 0.01f, 1, facingDownAt(y));
+    s.lights.push_back(l);
+    const Estimate e = estimate(s, settings, glm::vec3(0.0f), wo, 8);
+    if (y < 1.0f)
+      EXPECT_EQ(e.mean, 0.0) << "square at y = " << y;  // every shadow ray blocked: exactly 0
+    else
+      EXPECT_NEAR(e.mean, lit, 1e-4 * lit) << "square at y = " << y;  // as in the test above
+  }
+}
+
+// The same for an area light: a 10 cm emitter facing down at height 1 and a 20 cm black
+// square under it, which hides all of it from the floor point (its half-angle 5.9 degrees
+// against the emitter's 2.9), at 3 cm and at 60 cm below it: no light at all, neither by
+// next-event estimation nor by the BSDF rays that MIS weighs against it.
+TEST(PathTracer, AnOccluderAnywhereUnderTheAreaLightCastsItsShadow) {
+  const Material m = diffuseMaterial(glm::vec3(0.6f));
+  TraceSettings settings;
+  settings.maxBounces = 0;
+  const glm::vec3 wo = glm::normalize(glm::vec3(-1.0f, 1.0f, 0.3f));
+  for (float y : {0.4f, 0.97f, 2.0f}) {  // 2.0: above the light, for the unshadowed estimate
+    Scene s = floorScene(m);
+    Material emitter = diffuseMaterial(glm::vec3(0.0f));
+    emitter.emissiveFactor = glm::vec3(3.0f);
+    s.materials.push_back(emitter);
+    s.materials.push_back(diffuseMaterial(glm::vec3(0.0f)));
+    addSquare(s, 0.05f, 1, facingDownAt(1.0f));
+    addSquare(s, 0.1f, 2, facingDownAt(y));
+    const Estimate e = estimate(s, settings, glm::vec3(0.0f), wo, 64);
+    if (y < 1.0f)
+      EXPECT_EQ(e.mean, 0.0) << "square at y = " << y;
+    else  // the emitter's ~0.01 sr at 3 x 0.6 / pi: ~6e-3, well away from 0
+      EXPECT_GT(e.mean, 1e-3) << "square at y = " << y;
+  }
+}
+
 TEST(PathTracer, RectangularAreaLightOverAPlaneMatchesQuadrature) {
   const Material m = diffuseMaterial(glm::vec3(0.7f));
   Scene s = floorScene(m);
