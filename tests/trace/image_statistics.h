@@ -40,13 +40,30 @@ inline FrameStatistics statisticsOf(const std::vector<std::vector<glm::vec3>>& f
   return s;
 }
 
+// |difference| / its standard error; a difference with zero variance (sky, black: every
+// sample equal) must itself be 0.
+inline double zOf(double difference, double varianceOfDifference) {
+  if (varianceOfDifference > 0.0) return std::abs(difference) / std::sqrt(varianceOfDifference);
+  return std::abs(difference) > 1e-9 ? 1e30 : 0.0;
+}
+
+// The largest of z(x0, x1, y0, y1) over the whole image and a regions x regions grid.
+template <class RegionZ>
+double worstRegion(int width, int height, int regions, const RegionZ& z) {
+  double worst = z(0, width, 0, height);
+  for (int ry = 0; ry < regions; ++ry)
+    for (int rx = 0; rx < regions; ++rx)
+      worst = std::max(worst, z(rx * width / regions, (rx + 1) * width / regions,
+                                ry * height / regions, (ry + 1) * height / regions));
+  return worst;
+}
+
 // The largest |z| over a regions x regions grid (and the whole image) of the difference of
 // summed luminance, z = (sum a - sum b) / sqrt(sum var_a + sum var_b): pixels are
 // independent (counter-based random numbers), so each region's sum is close to normal.
 // Pixels with zero variance in both (sky, black) still count: their difference must be 0.
 inline double maxRegionZ(const FrameStatistics& a, const FrameStatistics& b, int regions) {
-  double worst = 0.0;
-  auto test = [&](int x0, int x1, int y0, int y1) {
+  return worstRegion(a.width, a.height, regions, [&](int x0, int x1, int y0, int y1) {
     double d = 0.0, v = 0.0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
@@ -54,15 +71,8 @@ inline double maxRegionZ(const FrameStatistics& a, const FrameStatistics& b, int
         d += a.mean[i] - b.mean[i];
         v += a.varianceOfMean[i] + b.varianceOfMean[i];
       }
-    const double z = v > 0.0 ? std::abs(d) / std::sqrt(v) : (std::abs(d) > 1e-9 ? 1e30 : 0.0);
-    worst = std::max(worst, z);
-  };
-  test(0, a.width, 0, a.height);
-  for (int ry = 0; ry < regions; ++ry)
-    for (int rx = 0; rx < regions; ++rx)
-      test(rx * a.width / regions, (rx + 1) * a.width / regions, ry * a.height / regions,
-           (ry + 1) * a.height / regions);
-  return worst;
+    return zOf(d, v);
+  });
 }
 
 // The same test on paired frames: frame k of 'a' and frame k of 'b' draw the same numbers
@@ -74,8 +84,7 @@ inline double maxPairedRegionZ(const std::vector<std::vector<glm::vec3>>& a,
                                const std::vector<std::vector<glm::vec3>>& b, int width, int height,
                                int regions) {
   const size_t frames = std::min(a.size(), b.size());
-  double worst = 0.0;
-  auto test = [&](int x0, int x1, int y0, int y1) {
+  return worstRegion(width, height, regions, [&](int x0, int x1, int y0, int y1) {
     double sum = 0.0, sq = 0.0;
     for (size_t k = 0; k < frames; ++k) {
       double d = 0.0;
@@ -87,17 +96,8 @@ inline double maxPairedRegionZ(const std::vector<std::vector<glm::vec3>>& a,
       sum += d, sq += d * d;
     }
     const double n = double(frames), mean = sum / n;
-    const double varianceOfMean = std::max(0.0, (sq - n * mean * mean) / (n - 1.0)) / n;
-    const double z = varianceOfMean > 0.0 ? std::abs(mean) / std::sqrt(varianceOfMean)
-                                          : (std::abs(mean) > 1e-9 ? 1e30 : 0.0);
-    worst = std::max(worst, z);
-  };
-  test(0, width, 0, height);
-  for (int ry = 0; ry < regions; ++ry)
-    for (int rx = 0; rx < regions; ++rx)
-      test(rx * width / regions, (rx + 1) * width / regions, ry * height / regions,
-           (ry + 1) * height / regions);
-  return worst;
+    return zOf(mean, std::max(0.0, (sq - n * mean * mean) / (n - 1.0)) / n);
+  });
 }
 
 // 4 x 4 regions + the whole image = 17 two-sided tests; |z| < 4 for all of them has a
