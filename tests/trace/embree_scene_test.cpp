@@ -188,32 +188,51 @@ TEST(EmbreeScene, SkinnedVerticesAreFoundAfterARefit) {
   EXPECT_TRUE(e.intersect({10, 0, 0}, {0, 0, -1}, 0, kInf).hit);
 }
 
+// Rays spawned from the point that a ray from 3 m above 'target' (+z) finds on the one
+// square of 's', over the hemisphere down to grazing: how many hit that surface again.
+int selfHitsAt(const Scene& s, const glm::vec3& target) {
+  const EmbreeScene e(s);
+  const glm::vec3 origin = target + glm::vec3(0, 0, 3);
+  const glm::vec3 dir = glm::normalize(target - origin);
+  const TraceHit h = e.intersect(origin, dir, 0, kInf);
+  EXPECT_TRUE(h.hit) << "no hit at " << target.x << ", " << target.y << ", " << target.z;
+  if (!h.hit) return -1;
+  const SurfaceHit sh = surfaceAt(s, h.instance, h.triangle, h.b1, h.b2, dir);
+  int selfHits = 0;
+  for (int k = 0; k < 64; ++k) {  // directions over the hemisphere, down to grazing
+    const float phi = 0.3f * k, cosT = 0.02f + 0.96f * (k % 8) / 7.0f;
+    const float sinT = std::sqrt(1 - cosT * cosT);
+    glm::vec3 a = std::abs(sh.geometricNormal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    const glm::vec3 b1 = glm::normalize(glm::cross(sh.geometricNormal, a));
+    const glm::vec3 b2 = glm::cross(sh.geometricNormal, b1);
+    const glm::vec3 out =
+        sinT * std::cos(phi) * b1 + sinT * std::sin(phi) * b2 + cosT * sh.geometricNormal;
+    selfHits += e.intersect(offsetRayOrigin(sh, out), out, 0, kInf).hit;
+  }
+  return selfHits;
+}
+
 TEST(SurfaceOffset, SpawnedRaysDoNotHitTheirOwnSurfaceFarFromTheOrigin) {
   // 1e5 m from the origin the float spacing is ~8 mm: a naive epsilon fails there.
   for (float far : {0.0f, 1e3f, 1e5f}) {
     const glm::mat4 t = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(far, far, -far - 3)),
                                     0.7f, glm::normalize(glm::vec3(1, 1, 0)));
     const Scene s = oneSquare(glm::scale(t, glm::vec3(50.0f)));
-    const EmbreeScene e(s);
-    const glm::vec3 target = glm::vec3(t * glm::vec4(0.1f, 0.2f, 0, 1));
-    const glm::vec3 origin = target + glm::vec3(0, 0, 3);
-    const glm::vec3 dir = glm::normalize(target - origin);
-    const TraceHit h = e.intersect(origin, dir, 0, kInf);
-    ASSERT_TRUE(h.hit) << far;
-    const SurfaceHit sh = surfaceAt(s, h.instance, h.triangle, h.b1, h.b2, dir);
-    int selfHits = 0;
-    for (int k = 0; k < 64; ++k) {  // directions over the hemisphere, down to grazing
-      const float phi = 0.3f * k, cosT = 0.02f + 0.96f * (k % 8) / 7.0f;
-      const float sinT = std::sqrt(1 - cosT * cosT);
-      glm::vec3 a = std::abs(sh.geometricNormal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-      const glm::vec3 b1 = glm::normalize(glm::cross(sh.geometricNormal, a));
-      const glm::vec3 b2 = glm::cross(sh.geometricNormal, b1);
-      const glm::vec3 out =
-          sinT * std::cos(phi) * b1 + sinT * std::sin(phi) * b2 + cosT * sh.geometricNormal;
-      selfHits += e.intersect(offsetRayOrigin(sh, out), out, 0, kInf).hit;
-    }
-    EXPECT_EQ(selfHits, 0) << "at distance " << far;
+    EXPECT_EQ(selfHitsAt(s, glm::vec3(t * glm::vec4(0.1f, 0.2f, 0, 1))), 0)
+        << "at distance " << far;
   }
+}
+
+// Near the origin on a huge triangle the point's error is its vertices' (~1e3 m x float
+// epsilon), far above a few hundred ulps of the point itself: a 2 km square through the
+// origin, hit within 0.5 m of it. Here the hit's own error bound (positionError) is what
+// lifts the origin off the surface; the integer offset alone (Wachter & Binder 2019) is
+// ~256 ulps of the point.
+TEST(SurfaceOffset, SpawnedRaysDoNotHitAHugeTriangleNearTheOrigin) {
+  const glm::mat4 t = glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 1, 0)));
+  const Scene s = oneSquare(glm::scale(t, glm::vec3(1000.0f)));
+  for (float r : {0.04f, 0.1f, 0.2f, 0.5f})
+    EXPECT_EQ(selfHitsAt(s, glm::vec3(t * glm::vec4(r, 0.7f * r, 0, 1))), 0) << "at " << r;
 }
 
 }  // namespace
