@@ -43,6 +43,7 @@ const char* const kAbHelp =
     "  --spp N --frames F --bounces N --seed S   as for render (defaults 1, 1, 8, 0)\n"
     "  --reference-spp N      reference samples per pixel (default 256)\n"
     "  --stereo-reuse on|off  as for render (default on), both modes\n"
+    "  --caustics on|off      as for render (default off), both modes\n"
     "  --backend B --exposure E --env FILE --out DIR (default out/ab-<scene>)\n";
 
 const char* const kReferenceHelp =
@@ -66,7 +67,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   std::set<std::string> valued = {"--scene",         "--env",     "--width",    "--height",
                                   "--spp",           "--frames",  "--bounces",  "--seed",
                                   "--reference-spp", "--backend", "--exposure", "--out"};
-  if (!referenceOnly) valued.insert("--stereo-reuse");
+  if (!referenceOnly) valued.insert({"--stereo-reuse", "--caustics"});
   if (referenceOnly) valued.insert("--shard");
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {});
@@ -85,6 +86,7 @@ AbRequest parseAb(const Args& args, bool referenceOnly) {
   a.referenceSpp = o.integer("--reference-spp", 256, 1, 1 << 20);
   if (o.has("--shard")) a.shard = parseShard(o.text("--shard", ""));
   r.stereoReuse = parseStereoReuse(o);
+  r.caustics = parseCaustics(o);
   const std::string stem = r.sceneSpec.substr(r.sceneSpec.find_last_of('/') + 1);
   r.outDir = o.text("--out", "out/ab-" + stem.substr(0, stem.find('.')));
   createOutputFolder(r.outDir);

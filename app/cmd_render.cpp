@@ -46,6 +46,9 @@ const char* const kRenderHelp =
     "  --stereo-reuse on|off  stereo frames: the eye traced second reuses the first eye's\n"
     "                         paths beyond each shared first hit, the eyes taking turns\n"
     "                         (default on; docs/ARCHITECTURE.md, \"Stereo path reuse\")\n"
+    "  --caustics on|off      directional lights' caustics (a smooth surface throwing the\n"
+    "                         sun onto a rough one) traced from the light (default off;\n"
+    "                         docs/ARCHITECTURE.md, \"Caustics\")\n"
     "  --time T               an animated glTF scene posed at T seconds (default 0)\n"
     "  --play                 animated scene: frame f shows time T + f / 75 s, so --frames F\n"
     "                         accumulates F / 75 s of motion (motion blur); --hmd plays the\n"
@@ -71,10 +74,11 @@ std::string defaultOutDir(const std::string& scene) {
 }  // namespace
 
 RenderRequest parseRenderRequest(const Args& args) {
-  std::set<std::string> valued = {
-      "--scene",   "--env",      "--width",   "--height",   "--backend", "--out",
-      "--mode",    "--spp",      "--bounces", "--frames",   "--seed",    "--exposure",
-      "--denoise", "--sampling", "--no-skip", "--converge", "--sampler", "--stereo-reuse"};
+  std::set<std::string> valued = {"--scene",   "--env",          "--width",   "--height",
+                                  "--backend", "--out",          "--mode",    "--spp",
+                                  "--bounces", "--frames",       "--seed",    "--exposure",
+                                  "--denoise", "--sampling",     "--no-skip", "--converge",
+                                  "--sampler", "--stereo-reuse", "--caustics"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {"--play"});
   if (!o.positional().empty())
@@ -102,6 +106,7 @@ RenderRequest parseRenderRequest(const Args& args) {
       "--sampling", "uniform", {"uniform", "hidden-area", "lens-matched", "thesis-zones"}));
   r.converge = o.number("--converge", 0.0f, 0.0f, 1.0f);
   r.stereoReuse = parseStereoReuse(o);
+  r.caustics = parseCaustics(o);
   try {
     r.skips.disable(o.text("--no-skip", ""));
   } catch (const std::invalid_argument& e) {
@@ -125,6 +130,10 @@ RenderRequest parseRenderRequest(const Args& args) {
   if (r.sampling != SampleMapKind::Uniform && (r.mode != RenderMode::Hybrid || !r.view.stereo))
     throw UsageError("--sampling: lens-based sample maps need --mode hybrid and --eyes stereo");
   return r;
+}
+
+bool parseCaustics(const Options& o) {
+  return o.choice("--caustics", kCausticsDefault ? "on" : "off", {"on", "off"}) == "on";
 }
 
 bool parseStereoReuse(const Options& o) {

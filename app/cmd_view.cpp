@@ -56,6 +56,7 @@ const char* const kViewCommandHelp =
     "                         (default 4), --denoise off|temporal|full (default full),\n"
     "                         --sampling uniform|lens-matched (default uniform),\n"
     "                         --stereo-reuse on|off (default on),\n"
+    "                         --caustics on|off (default off),\n"
     "                         --exposure E (default 1); all of these change in the overlay\n"
     "  --no-reproject         show frames at the pose they were rendered at\n"
     "  --no-overlay           no Dear ImGui overlay\n"
@@ -96,10 +97,11 @@ const char* const kModes[] = {"hybrid", "pt"};
 ViewConfig parseViewConfig(Args args) {
   ViewConfig c;
   c.hmd = extractHmdOption(args);
-  std::set<std::string> valued = {
-      "--scene",    "--env",  "--width",  "--height",     "--window",   "--panel",
-      "--rotate",   "--mode", "--spp",    "--bounces",    "--denoise",  "--sampling",
-      "--exposure", "--out",  "--frames", "--screenshot", "--overscan", "--stereo-reuse"};
+  std::set<std::string> valued = {"--scene",    "--env",          "--width",   "--height",
+                                  "--window",   "--panel",        "--rotate",  "--mode",
+                                  "--spp",      "--bounces",      "--denoise", "--sampling",
+                                  "--exposure", "--out",          "--frames",  "--screenshot",
+                                  "--overscan", "--stereo-reuse", "--caustics"};
   valued.insert(kViewOptions.begin(), kViewOptions.end());
   const Options o(args, valued, {"--no-reproject", "--no-overlay"});
   if (!o.positional().empty())
@@ -122,6 +124,7 @@ ViewConfig parseViewConfig(Args args) {
       parseSampleMapKind(o.choice("--sampling", "uniform", {"uniform", "lens-matched"}));
   c.settings.denoise = gl::parseDenoiseMode(o.text("--denoise", "full"));
   c.settings.stereoReuse = parseStereoReuse(o);
+  c.settings.caustics = parseCaustics(o);
   c.exposure = o.number("--exposure", 1.0f, 1e-6f, 1e6f);
   c.reproject = !o.has("--no-reproject");
   c.overlay = !o.has("--no-overlay");
@@ -227,6 +230,7 @@ void drawOverlay(ViewConfig& c, const Stats& s, const Head& head) {
   if (ImGui::Checkbox("lens-matched sampling (hybrid)", &lensMatched))
     c.settings.sampleMap = lensMatched ? SampleMapKind::LensMatched : SampleMapKind::Uniform;
   ImGui::Checkbox("stereo path reuse", &c.settings.stereoReuse);
+  ImGui::Checkbox("light-traced caustics", &c.settings.caustics);
   ImGui::Checkbox("re-projection", &c.reproject);
   ImGui::SliderFloat("exposure", &c.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::TextUnformatted(head.source->status().c_str());

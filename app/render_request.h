@@ -31,6 +31,7 @@ struct RenderRequest {
   WorkSkips skips;                         // --no-skip turns skips off (trace/work_skips.h)
   double converge = 0.0;                   // --converge: stop at this estimated relMSE; 0 = off
   bool stereoReuse = kStereoReuseDefault;  // --stereo-reuse
+  bool caustics = kCausticsDefault;        // --caustics
   double time = 0.0;                       // --time: the scene time of frame 0 (an animated scene)
   bool play = false;  // --play: frame f at time + f * kAnimationFrameSeconds (motion blur)
   Scene scene;
@@ -41,6 +42,7 @@ RenderRequest parseRenderRequest(const Args& args);  // loads the scene too
 
 // --stereo-reuse on|off (render, view, ab, bench), kStereoReuseDefault when absent.
 bool parseStereoReuse(const Options& options);
+bool parseCaustics(const Options& options);  // --caustics on|off
 
 // "left"/"right", or "mono" for a mono view's single eye.
 inline const char* eyeFolder(const View& v, int eye) {

@@ -167,6 +167,7 @@ FrameSettings frameSettingsOf(const RenderRequest& r) {
   s.sampleMap = r.sampling;
   s.denoise = r.denoise;
   s.stereoReuse = r.stereoReuse;
+  s.caustics = r.caustics;
   return s;
 }
 

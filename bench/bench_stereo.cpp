@@ -49,6 +49,7 @@
 #include "gl/context.h"
 #include "harness/reference_cache.h"
 #include "hybrid/hybrid_renderer.h"
+#include "trace/caustics.h"
 #include "trace/pixel_estimate.h"
 #include "trace/sampling.h"
 
@@ -61,6 +62,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct Args {
   std::string out;
   int width = 0, height = 0, repeats = 0, frames = 0, referenceSpp = 0, seeds = 0;
+  bool caustics = false;     // --caustics: both settings light-trace the sun's caustics
   bool equalFrames = false;  // reuse on gets off's frames: its error per frame, not per time
 };
 
@@ -158,14 +160,17 @@ void timePt(const TraceContext& base, const View& view, const Args& a, Row& row)
   std::array<std::array<std::vector<double>, 2>, 2> ms;
   uint64_t total = 0, reused = 0;
   std::array<std::array<EyeImage, 2>, 2> buffers;  // per setting and eye, as FramePipeline keeps
+  std::array<CausticPaths, 2> caustics;            // per setting: the eyes share a frame's
   TraceContext ctx = base;
   ctx.settings.reusedOwnShadowRays = false;  // the left's answers, as timeHybrid's 'on'
   for (int k = -1; k < a.repeats; ++k)
     for (int on = 0; on < 2; ++on) {
       const uint32_t f = uint32_t(std::max(k, 0));
       const auto eyes = eyeCameras(view, a.width, a.height, f, SamplerKind::Sobol);
-      const StereoTurns turns =
+      StereoTurns turns =
           stereoTurnsOf(on == 1, 2, f, paths, eyes[0], uint32_t(ctx.settings.samplesPerPixel));
+      caustics[on].key.frame = ~0u;  // traced anew each frame (the warm-up repeats frame 0)
+      for (StereoRole& role : turns.roles) role.caustics = &caustics[on];
       for (int turn = 0; turn < 2; ++turn) {
         const int e = turns.order[turn];
         const auto t0 = Clock::now();
@@ -410,7 +415,7 @@ void print(const Row& r, std::ofstream& csv) {
 const char* const kUsage =
     "usage: photovr_bench_stereo [--out DIR] [--width W] [--height H] [--repeats N]\n"
     "                            [--frames F] [--seeds K] [--reference-spp S] [--scene NAME]\n"
-    "                            [--equal-frames]\n"
+    "                            [--equal-frames] [--caustics on|off]\n"
     "Stereo path reuse on against off on every built-in scene (or --scene), both eyes at\n"
     "W x H (120x135), 1 spp, 8 bounces: tracer times of the eye traced first and of the\n"
     "second (median of N, 7; the eyes take turns), hybrid and pt; the share of the second\n"
@@ -420,7 +425,8 @@ const char* const kUsage =
     "their own shadow rays instead: time and relMSE); the correlation of the eyes' relative\n"
     "noise at corresponding pixels. Equal time also at 3F/4 and 5F/4 frames off, and the\n"
     "mean of the three. --equal-frames: reuse on gets the F frames off gets (its error per\n"
-    "frame, not per time; F alone).\n"
+    "frame, not per time; F alone). --caustics on: both settings light-trace directional\n"
+    "lights' caustics (trace/caustics.h; default off).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
 int run(const Options& o) {
@@ -432,6 +438,7 @@ int run(const Options& o) {
   a.seeds = o.integer("--seeds", 4, 1, 1000);
   a.referenceSpp = o.integer("--reference-spp", 1024, 1, 1 << 20);
   a.equalFrames = o.has("--equal-frames");
+  a.caustics = o.choice("--caustics", "off", {"on", "off"}) == "on";
   const std::string only = o.has("--scene") ? builtinSceneArgument(o.text("--scene", "")) : "";
   const std::unique_ptr<gl::Context> gl = gl::Context::createHeadless();
   std::printf("bench_stereo: %dx%d x 2 eyes, 1 spp, 8 bounces; GL: %s\n", a.width, a.height,
@@ -454,7 +461,9 @@ int run(const Options& o) {
     if (!only.empty() && name != only) continue;
     const Scene scene = makeBuiltinScene(name);
     const View view = viewOf(scene);
-    HybridRenderer renderer(scene, a.width, a.height, TraceSettings{});
+    TraceSettings settings;
+    settings.caustics = a.caustics;
+    HybridRenderer renderer(scene, a.width, a.height, settings);
     Row row;
     row.scene = name;
     row.equalFrames = a.equalFrames;
@@ -474,6 +483,6 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
   return photovr::benchMain(argc, argv, photovr::kUsage,
                             {"--out", "--width", "--height", "--repeats", "--frames",
-                             "--reference-spp", "--scene", "--seeds"},
+                             "--reference-spp", "--scene", "--seeds", "--caustics"},
                             {"--equal-frames"}, photovr::run);
 }

@@ -13,6 +13,7 @@
 #include "core/image_io.h"
 #include "core/scene_hash.h"
 #include "harness/reference_shards.h"
+#include "trace/caustics.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
 #include "trace/path_tracer.h"
@@ -116,6 +117,7 @@ void renderShard(const ReferenceSpec& spec, const std::string& dir, const ShardI
   settings.samplesPerPixel = kReferenceSppPerFrame;
   settings.maxBounces = spec.bounces;
   settings.seed = kReferenceSeed;
+  settings.caustics = true;  // see referenceKey
   const TraceContext ctx{*spec.scene, embree, lights, settings};
   const auto t0 = std::chrono::steady_clock::now();
   const int first = sums.frames;
@@ -157,6 +159,10 @@ std::string referenceKey(const ReferenceSpec& s) {
   // Accumulated in shards of fixed-point sums (reference_shards.h); caches made before keep
   // a float running mean, which is not resumed.
   h.text("accumulation=shards-fixed32");
+  // Directional lights' caustics light-traced (trace/caustics.h): the same image, converged
+  // far sooner where the sun shines through smooth surfaces; caches made before are not
+  // resumed there. Scenes without such caustics keep their key (their images do not change).
+  if (hasLightTracedCaustics(*s.scene)) h.text("caustics=light-traced, a path per 8 samples");
   return hexDigest(h.digest());
 }
 

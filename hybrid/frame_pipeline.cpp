@@ -34,6 +34,7 @@ TraceSettings traceSettingsOf(const FrameSettings& f, const WorkSkips& skips) {
   s.seed = f.seed;
   s.sampler = f.sampler;
   s.stereoReuse = f.stereoReuse;
+  s.caustics = f.caustics;
   s.skips = skips;
   return s;
 }
@@ -144,8 +145,9 @@ void FramePipeline::trace(Job& job) {
   }
   TraceContext ctx = traceContext();
   ctx.settings = settings;
-  const StereoTurns turns = stereoTurnsOf(settings.stereoReuse, r.eyeCount, r.index, ptStereo_,
-                                          r.eyes[0], uint32_t(settings.samplesPerPixel));
+  StereoTurns turns = stereoTurnsOf(settings.stereoReuse, r.eyeCount, r.index, ptStereo_, r.eyes[0],
+                                    uint32_t(settings.samplesPerPixel));
+  for (StereoRole& role : turns.roles) role.caustics = &ptCaustics_;
   for (int k = 0; k < r.eyeCount; ++k) {
     const int e = turns.order[k];
     const auto t0 = Clock::now();

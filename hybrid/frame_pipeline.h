@@ -35,6 +35,7 @@
 #include "hybrid/frame_settings.h"
 #include "hybrid/hybrid_renderer.h"
 #include "hybrid/sample_maps.h"
+#include "trace/caustics.h"
 #include "trace/path_tracer.h"
 
 namespace photovr {
@@ -149,6 +150,7 @@ class FramePipeline {
   std::map<std::pair<SampleMapKind, int>, StereoSampleMaps> maps_;
   std::array<EyeImage, 2> ptBuffers_;         // pt frames are traced into these
   StereoPaths ptStereo_;                      // pt's left-eye paths for stereo reuse
+  CausticPaths ptCaustics_;                   // pt's light paths, for both eyes of a frame
   std::array<gl::GBufferImage, 2> gbuffers_;  // sequential read-backs, storage reused
   bool historyValid_ = false;
   FrameMode historyMode_ = FrameMode::Hybrid;

@@ -15,6 +15,9 @@ enum class FrameMode { Hybrid, PathTraced };
 // Whether a stereo frame's second eye reuses the first eye's paths unless told otherwise
 // (--stereo-reuse; measured in docs/MEASUREMENTS.md, "Stereo path reuse").
 constexpr bool kStereoReuseDefault = true;
+// Whether directional lights' caustics are light-traced unless told otherwise (--caustics;
+// trace/caustics.h).
+constexpr bool kCausticsDefault = false;
 const char* frameModeName(FrameMode mode);  // "hybrid", "pt"
 
 // What one frame asks for; may change from frame to frame.
@@ -26,6 +29,7 @@ struct FrameSettings {
   SampleMapKind sampleMap = SampleMapKind::Uniform;  // hybrid only
   gl::DenoiseMode denoise = gl::DenoiseMode::Off;
   bool stereoReuse = kStereoReuseDefault;  // the second eye reuses the first's (stereo_reuse.h)
+  bool caustics = kCausticsDefault;        // directional lights' caustics light-traced
 };
 
 }  // namespace photovr

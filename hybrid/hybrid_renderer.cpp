@@ -80,8 +80,9 @@ std::array<EyeImage, 2> HybridRenderer::trace(const std::array<gl::GBufferImage,
     embree_.updateInstanceTransforms();
     t.refitMs += msBetween(t0, Clock::now());
   }
-  const StereoTurns turns = stereoTurnsOf(settings.stereoReuse, eyeCount, frame, stereo_, eyes[0],
-                                          uint32_t(settings.samplesPerPixel));
+  StereoTurns turns = stereoTurnsOf(settings.stereoReuse, eyeCount, frame, stereo_, eyes[0],
+                                    uint32_t(settings.samplesPerPixel));
+  for (StereoRole& role : turns.roles) role.caustics = &caustics_;
   for (int k = 0; k < eyeCount; ++k) {
     const int e = turns.order[k];
     HybridEyeStats s;

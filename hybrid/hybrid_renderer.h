@@ -14,6 +14,7 @@
 #include "gl/gbuffer.h"
 #include "gl/scene_gpu.h"
 #include "hybrid/hybrid_tracer.h"
+#include "trace/caustics.h"
 #include "trace/embree_scene.h"
 #include "trace/lights.h"
 #include "trace/sample_map.h"
@@ -92,11 +93,14 @@ class HybridRenderer {
   EmbreeScene& embree() { return embree_; }  // e.g. to attach a RayRecorder (bench/)
   const TraceContext& traceContext() const { return ctx_; }
   void setSeed(uint32_t seed) { ctx_.settings.seed = seed; }
-  // What render() and renderSequence() trace with from now on (the skips stay).
+  // What render() and renderSequence() trace with from now on (the skips stay). A frame
+  // traced after it traces its light-traced caustics anew, even if an earlier frame had its
+  // index (so that each setting of an A/B pays for its own).
   void setSettings(const TraceSettings& s) {
     const WorkSkips skips = ctx_.settings.skips;
     ctx_.settings = s;
     ctx_.settings.skips = skips;
+    caustics_.key = {};
   }
 
  private:
@@ -106,6 +110,7 @@ class HybridRenderer {
   std::array<gl::GBufferImage, 2> gbuffers_;    // the last read-back, its storage reused
   std::array<HybridEyeBuffers, 2> eyeBuffers_;  // the tracer's, likewise (see recycle())
   StereoPaths stereo_;                          // the left eye's paths for stereo reuse
+  CausticPaths caustics_;                       // the light paths, for both eyes of a frame
   EmbreeScene embree_;
   LightSet lights_;
   TraceContext ctx_;

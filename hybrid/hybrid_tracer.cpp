@@ -12,6 +12,7 @@
 
 #include "core/stopwatch.h"
 #include "hybrid/hit_rebuild.h"
+#include "trace/caustics.h"
 #include "trace/path_batcher.h"
 #include "trace/standing_lanes.h"
 
@@ -146,6 +147,10 @@ EyeImage traceFromGBuffer(const TraceContext& ctx, const gl::GBufferImage& g, co
     stats->tracedPixels = traced;
     stats->skyRayHits = skyHits;
   }
+  // The light tracer's caustics (trace/caustics.h), part of the tracer's time.
+  const auto causticsStart = Clock::now();
+  traceCausticsInto(ctx, cam, frame, img, stereo.caustics);
+  if (stats) stats->traceMs += msSince(causticsStart);
   return std::move(img);
 }
 

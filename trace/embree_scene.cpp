@@ -505,6 +505,16 @@ ReplayCounts EmbreeScene::replayParallel(const std::vector<RecordedRay>& rays,
       [](ReplayCounts a, const ReplayCounts& b) { return a += b; });
 }
 
+Bounds EmbreeScene::bounds() const {
+  RTCBounds b;
+  rtcGetSceneBounds(impl_->top, &b);
+  Bounds out;
+  if (!(b.lower_x <= b.upper_x)) return out;
+  out.extend({b.lower_x, b.lower_y, b.lower_z});
+  out.extend({b.upper_x, b.upper_y, b.upper_z});
+  return out;
+}
+
 void enableFlushToZero() {
   _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);

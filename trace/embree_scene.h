@@ -202,6 +202,9 @@ class EmbreeScene {
   // The scene's untextured materials' inputs, computed once with its BVHs (like its
   // back-face culling, they are the materials' at construction).
   const MaterialTable& materials() const { return materials_; }
+  // The bounds of everything a ray can hit, as the top-level BVH holds them (rtcGetSceneBounds:
+  // no walk over the vertices); empty for an empty scene.
+  Bounds bounds() const;
 
  private:
   struct Impl;

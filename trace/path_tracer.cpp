@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "trace/bsdf.h"
+#include "trace/caustics.h"
 #include "trace/path_stages.h"
 #include "trace/sampling.h"
 
@@ -92,6 +93,15 @@ void placeLight(const PathState& p, const Frame& frame, VertexShading& vs) {
   vs.lit = sameSide(ls.direction, p.hit, vs.wiL);
 }
 
+// Whether NEE's light sample at the path's vertex closes a path that the light tracer of
+// caustics takes (trace/caustics.h): a directional light (delta, at infinity) seen from the
+// path's second vertex, a causticCaster, whose first is a causticReceiver. Then NEE leaves
+// out the caster's specular lobe, which is the light tracer's.
+bool lightTracedCaustic(const TraceContext& ctx, const PathState& p, const LightSample& ls) {
+  return ctx.settings.caustics && p.depth == 1 && p.causticReceiver && ls.isDelta &&
+         ls.atInfinity() && causticCaster(p.hit.bsdf);
+}
+
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
 // lights with area (Veach 1997 sec. 9.2, power heuristic), from the light sample and the
 // BSDF's value and pdf towards it (vs.nee): what it adds unblocked and the shadow ray that
@@ -101,7 +111,8 @@ void placeLight(const PathState& p, const Frame& frame, VertexShading& vs) {
 bool directLight(const TraceContext& ctx, const PathState& p, const VertexShading& vs,
                  ShadowRay& shadow) {
   const LightSample& ls = vs.light;
-  const BsdfLobes& f = vs.nee.f;
+  BsdfLobes f = vs.nee.f;
+  if (lightTracedCaustic(ctx, p, ls)) f.specular = glm::vec3(0.0f);
   if (f.total() == glm::vec3(0.0f)) return false;
   if (!leftShadowAnswers(p)) setShadowRay(shadow.ray, p.hit, ls);
   const float w = ls.isDelta ? 1.0f : powerHeuristic(1, ls.pdf, 1, vs.nee.pdf);
@@ -266,6 +277,7 @@ void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
                const SampleCounters& counters, FirstBounce* record, const FirstBounce* reuse) {
   p.hit = hit;
   p.wo = wo;
+  p.causticReceiver = causticReceiver(hit.bsdf);
   p.sampler = reuse ? reuse->sampler : PathSampler::make(counters);
   p.record = record;
   p.reuse = reuse;

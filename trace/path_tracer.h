@@ -30,6 +30,9 @@ struct TraceSettings {
   // left's answer (trace/stereo_reuse.h, "The approximations"): that approximation off, to
   // measure it (bench/bench_stereo.cpp, tests/trace/stereo_reuse_test.cpp).
   bool reusedOwnShadowRays = false;
+  // Directional lights' caustics by light tracing (trace/caustics.h, --caustics): the
+  // paths it takes are left out of next-event estimation.
+  bool caustics = false;
   WorkSkips skips;  // work the scene does not need (work_skips.h); the renderers build
                     // their EmbreeScene and LightSet with the same skips
 };

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "trace/camera_lanes.h"
+#include "trace/caustics.h"
 #include "trace/hit_geometry.h"
 #include "trace/path_tracer.h"
 #include "trace/path_batcher.h"
@@ -201,6 +202,7 @@ EyeImage renderPathTraced(const TraceContext& ctx, const EyeCamera& cam, uint32_
   img.reusedPaths = reused;
   img.reusedOwnBounces = ownBounces;
   img.rejectedSamples = rejected;
+  traceCausticsInto(ctx, cam, frame, img, stereo.caustics);
   return img;
 }
 

@@ -262,10 +262,15 @@ bool mirrorLike(const BsdfParams& bsdf);
 // resets), the other reuses 'reuse'; both null: stereo reuse off. 'leftEye': the right eye's
 // window into the left eye's image, whose pixels' numbers its samples draw (the left's
 // records when it reuses them); null for the left eye.
+struct CausticPaths;  // trace/caustics.h
+
 struct StereoRole {
   StereoPaths* record = nullptr;
   const StereoPaths* reuse = nullptr;
   const EyeWindow* leftEye = nullptr;
+  // The frame's light-traced caustic paths, traced by the eye that goes first and connected
+  // to each eye (trace/caustics.h); null: each eye traces its own. Set with reuse on or off.
+  CausticPaths* caustics = nullptr;
   // Whether its samples look into the other eye's image (for a partner, or their numbers).
   bool looksAcross() const { return reuse || leftEye; }
 };
