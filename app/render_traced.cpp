@@ -152,6 +152,14 @@ std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frame
     std::snprintf(stages, sizeof stages, "; posing the scene %.2f ms", total.animateMs / n);
     line += stages;
   }
+  if (r.caustics) {
+    std::snprintf(stages, sizeof stages,
+                  "; light-traced caustics %.1f ms of the tracer's (first eye %.1f, second "
+                  "%.1f), %.0f light paths a frame reached a pixel",
+                  (total.turnCausticMs[0] + total.turnCausticMs[1]) / n, total.turnCausticMs[0] / n,
+                  total.turnCausticMs[1] / n, double(total.causticSplats) / n);
+    line += stages;
+  }
   return line;
 }
 

@@ -15,7 +15,9 @@ void FrameTimes::add(const FrameTimes& t) {
     turnPaths[e] += t.turnPaths[e];
     turnReusedPaths[e] += t.turnReusedPaths[e];
     turnOwnBounces[e] += t.turnOwnBounces[e];
+    turnCausticMs[e] += t.turnCausticMs[e];
   }
+  causticSplats += t.causticSplats;
   animateMs += t.animateMs;
   denoiseMs += t.denoiseMs, denoisePassMs += t.denoisePassMs;
   rays += t.rays, outsideHits += t.outsideHits, rejectedSamples += t.rejectedSamples;
@@ -27,6 +29,8 @@ void FrameTimes::addTurn(int turn, const EyeImage& image) {
   turnPaths[turn] += image.paths;
   turnReusedPaths[turn] += image.reusedPaths;
   turnOwnBounces[turn] += image.reusedOwnBounces;
+  turnCausticMs[turn] += image.causticMs;
+  causticSplats += image.causticSplats;
 }
 
 HybridRenderer::HybridRenderer(const Scene& scene, int w, int h, const TraceSettings& settings)

@@ -33,6 +33,8 @@ struct FrameTimes {
   std::array<uint64_t, 2> turnPaths{};        // paths from primary hits ...
   std::array<uint64_t, 2> turnReusedPaths{};  // ... of which reused the first eye's ...
   std::array<uint64_t, 2> turnOwnBounces{};   // ... of which traced an own bounce too
+  std::array<double, 2> turnCausticMs{};      // of turnTraceMs: light-traced caustics
+  uint64_t causticSplats = 0;                 // light paths that reached a pixel, both eyes
   double refitMs = 0.0;                       // BVH top-level re-commit (only with 'refit' off)
   double animateMs = 0.0;      // posing an animated scene and updating GL, Embree and lights to it
   double denoiseMs = 0.0;      // FramePipeline's finish: denoiser or upload, wall

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -321,6 +322,7 @@ void addCaustics(EyeImage& image, std::span<const CausticSplat> splats) {
 void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_t frame,
                        EyeImage& image, CausticPaths* shared) {
   if (!ctx.settings.caustics) return;
+  const auto start = std::chrono::steady_clock::now();
   const uint32_t count =
       causticPathCount(camera.width, camera.height, ctx.settings.samplesPerPixel);
   CausticPaths own;
@@ -330,7 +332,12 @@ void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_
                     &image.rays);
     paths.key = {&ctx.scene, &ctx.embree, ctx.settings.seed, frame, count};
   }
-  addCaustics(image, connectToEye(ctx, paths, camera, &image.rays));
+  const std::vector<CausticSplat> splats = connectToEye(ctx, paths, camera, &image.rays);
+  addCaustics(image, splats);
+  image.causticSplats = uint64_t(std::count_if(
+      splats.begin(), splats.end(), [](const CausticSplat& s) { return s.pixel != ~0u; }));
+  image.causticMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 bool CausticPaths::holds(const TraceContext& ctx, uint32_t frame, uint32_t count) const {
