@@ -26,6 +26,12 @@ bool mayCast(const Material& m) {
   return m.roughnessFactor < kCausticCasterRoughness || m.metallicRoughnessTexture.valid();
 }
 
+// A directional light that lights anything: its irradiance and a direction to take.
+bool litSun(const Light& l) {
+  return l.type == Light::Type::Directional && luminance(l.color * l.intensity) > 0.0f &&
+         glm::length(l.direction) > 0.0f;
+}
+
 struct MeshSphere {
   glm::vec3 centre{0.0f};
   float radius = -1.0f;  // < 0: not computed
@@ -160,11 +166,8 @@ CausticSplat connectToEye(const TraceContext& ctx, const CausticLight& light, co
 void traceLightPaths(const TraceContext& ctx, const CausticSources& sources, uint32_t frame,
                      uint32_t pathCount, CausticPaths& paths, uint64_t* rays) {
   paths.lights.resize(pathCount);
-  paths.reached.resize(pathCount);
-  if (sources.empty()) {
-    std::fill(paths.reached.begin(), paths.reached.end(), uint8_t(0));
-    return;
-  }
+  paths.reached.assign(pathCount, 0);
+  if (sources.empty()) return;
   // One Owen-scrambled Sobol sequence over every light path of every frame, keyed by the
   // seed alone (not the eye: both eyes take the same paths, so their noise agrees).
   const uint32_t key = hashCombine(ctx.settings.seed, 0x43415553u);  // "CAUS"
@@ -217,11 +220,7 @@ bool causticReceiver(const BsdfParams& b) {
 }
 
 bool hasLightTracedCaustics(const Scene& scene) {
-  const auto lit = [](const Light& l) {
-    return l.type == Light::Type::Directional && luminance(l.color * l.intensity) > 0.0f &&
-           glm::length(l.direction) > 0.0f;
-  };
-  if (std::none_of(scene.lights.begin(), scene.lights.end(), lit)) return false;
+  if (std::none_of(scene.lights.begin(), scene.lights.end(), litSun)) return false;
   return std::any_of(scene.instances.begin(), scene.instances.end(), [&](const Instance& i) {
     return scene.hasMesh(i.mesh) && mayCast(scene.materials[scene.meshes[i.mesh].material]);
   });
@@ -238,10 +237,9 @@ uint32_t causticPathCount(int width, int height, int samplesPerPixel) {
 CausticSources::CausticSources(const Scene& scene, const Bounds& world) {
   float power = 0.0f;
   for (const Light& l : scene.lights) {
+    if (!litSun(l)) continue;
     const glm::vec3 e = l.color * l.intensity;
-    const float len = glm::length(l.direction);
-    if (l.type != Light::Type::Directional || !(luminance(e) > 0.0f) || !(len > 0.0f)) continue;
-    suns_.push_back({-l.direction / len, e, luminance(e)});
+    suns_.push_back({-glm::normalize(l.direction), e, luminance(e)});
     power += luminance(e);
   }
   for (Sun& s : suns_) s.probability /= power;
