@@ -319,7 +319,8 @@ void addCaustics(EyeImage& image, std::span<const CausticSplat> splats) {
 
 void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_t frame,
                        EyeImage& image, CausticPaths* shared) {
-  if (!ctx.settings.caustics) return;
+  // Their paths have a second vertex, which --bounces 0 does not reach.
+  if (!ctx.settings.caustics || ctx.settings.maxBounces < 1) return;
   const auto start = std::chrono::steady_clock::now();
   const uint32_t count =
       causticPathCount(camera.width, camera.height, ctx.settings.samplesPerPixel);

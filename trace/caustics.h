@@ -127,7 +127,8 @@ std::vector<CausticSplat> traceCaustics(const TraceContext& ctx, const CausticSo
 // samples: colour, and the demodulated lobes where the image has them.
 void addCaustics(EyeImage& image, std::span<const CausticSplat> splats);
 
-// Both, where ctx.settings.caustics is on and the scene has caustics to trace. 'shared':
+// Both, where ctx.settings.caustics is on, maxBounces reaches a second vertex and the scene
+// has caustics to trace. 'shared':
 // the frame's light paths, traced here unless it holds them already (the other eye's), and
 // kept there; null: traced for this eye alone.
 void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_t frame,

@@ -291,6 +291,21 @@ TEST(Caustics, FramesAreBitIdenticalWhateverTheThreadCount) {
   EXPECT_NE(one, renderPathTraced(without.ctx, cam, 0, 3).color) << "caustics changed nothing";
 }
 
+// A light-traced caustic is indirect light (the sun reaches x1 through x2), which
+// --bounces 0 leaves out: there the path tracer has no second vertex whose next-event
+// estimation leaves anything to the light tracer, so caustics on are caustics off, to the bit.
+TEST(Caustics, NoBouncesNoCaustics) {
+  Fixture on(makeBuiltinScene("spheres"), true), off(makeBuiltinScene("spheres"), false);
+  on.ctx.settings.maxBounces = off.ctx.settings.maxBounces = 0;
+  StereoRig rig;
+  rig.head = poseOf(on.scene.cameras.at(0));
+  const EyeCamera cam = rig.eye(Eye::Left, 40, 45, samplePosition(SamplerKind::Sobol, 2));
+  const EyeImage a = renderPathTraced(on.ctx, cam, 0, 2), b = renderPathTraced(off.ctx, cam, 0, 2);
+  ASSERT_EQ(a.color.size(), b.color.size());
+  EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec3)));
+  EXPECT_EQ(a.rays, b.rays) << "light paths were traced";
+}
+
 // The eyes of a stereo frame share its light paths (CausticPaths): the second eye connects
 // the first's paths to itself, and its image is the one it gets tracing them itself, to the
 // bit (the paths' numbers do not depend on the eye).
