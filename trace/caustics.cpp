@@ -53,6 +53,14 @@ float largestScale(const glm::mat4& m) {
                              glm::dot(glm::vec3(m[2]), glm::vec3(m[2]))}));
 }
 
+// How far from 'p' along 'd' the line leaves box 'b' (slabs; negative where it left before p).
+float exitDistance(const Bounds& b, const glm::vec3& p, const glm::vec3& d) {
+  float t = kInfinity;
+  for (int a = 0; a < 3; ++a)
+    if (d[a] != 0.0f) t = std::min(t, ((d[a] > 0.0f ? b.max[a] : b.min[a]) - p[a]) / d[a]);
+  return t;
+}
+
 // The eye's view of a point: its pixel and the pinhole's importance there.
 struct EyeView {
   uint32_t pixel = ~0u;
@@ -245,8 +253,10 @@ CausticSources::CausticSources(const Scene& scene, const Bounds& world) {
   for (Sun& s : suns_) s.probability /= power;
   if (suns_.empty()) return;
   std::vector<MeshSphere> spheres(scene.meshes.size());
-  sceneCentre_ = world.center();
-  sceneRadius_ = 0.5f * glm::length(world.extent());
+  world_ = world;
+  // Past the box by more than the rounding of the start's point (its coordinates' size).
+  const glm::vec3 reach = glm::max(glm::abs(world.min), glm::abs(world.max));
+  worldMargin_ = 1e-5f * (glm::length(world.extent()) + glm::length(reach));
   for (const Instance& inst : scene.instances) {
     if (!scene.hasMesh(inst.mesh)) continue;
     const Mesh& mesh = scene.meshes[inst.mesh];
@@ -289,9 +299,11 @@ CausticSources::Start CausticSources::sample(float uSun, float uCaster, glm::vec
   s.toSun = light.toSun;
   s.irradiance = light.irradiance;
   s.pdf = light.probability * float(covering) / diskArea_;
-  // Beyond everything the sun's ray could meet before the point.
-  const float ahead = glm::dot(sceneCentre_ - point, light.toSun) + sceneRadius_;
-  s.origin = point + light.toSun * (std::max(ahead, 0.0f) + c.radius + 1.0f);
+  // Beyond everything the sun's ray could meet before the point: where its line leaves the
+  // BVH's box, not farther, for x2's precision (the ray's t and barycentrics lose digits with
+  // the distance: from the bounding sphere of spheres' 200 m ground, 1e-3 of a triangle).
+  const float ahead = std::max(exitDistance(world_, point, light.toSun), 0.0f);
+  s.origin = point + light.toSun * (ahead + worldMargin_);
   return s;
 }
 

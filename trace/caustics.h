@@ -91,8 +91,8 @@ class CausticSources {
   std::vector<Caster> casters_;
   std::vector<float> casterCdf_;  // by r^2, the disks' areas
   float diskArea_ = 0.0f;         // pi sum r^2
-  glm::vec3 sceneCentre_{0.0f};
-  float sceneRadius_ = 0.0f;
+  Bounds world_;                  // what a ray can meet (the constructor's 'world')
+  float worldMargin_ = 0.0f;      // how far beyond it a start begins
 };
 
 // A light path up to x1 (the receiver it reached), what the eyes connect to: x1 as a hit
