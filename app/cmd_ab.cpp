@@ -43,7 +43,7 @@ const char* const kAbHelp =
     "  --spp N --frames F --bounces N --seed S   as for render (defaults 1, 1, 8, 0)\n"
     "  --reference-spp N      reference samples per pixel (default 256)\n"
     "  --stereo-reuse on|off  as for render (default on), both modes\n"
-    "  --caustics on|off      as for render (default off), both modes\n"
+    "  --caustics on|off      as for render (default on), both modes\n"
     "  --backend B --exposure E --env FILE --out DIR (default out/ab-<scene>)\n";
 
 const char* const kReferenceHelp =

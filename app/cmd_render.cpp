@@ -47,7 +47,7 @@ const char* const kRenderHelp =
     "                         paths beyond each shared first hit, the eyes taking turns\n"
     "                         (default on; docs/ARCHITECTURE.md, \"Stereo path reuse\")\n"
     "  --caustics on|off      directional lights' caustics (a smooth surface throwing the\n"
-    "                         sun onto a rough one) traced from the light (default off;\n"
+    "                         sun onto a rough one) traced from the light (default on;\n"
     "                         docs/ARCHITECTURE.md, \"Caustics\")\n"
     "  --time T               an animated glTF scene posed at T seconds (default 0)\n"
     "  --play                 animated scene: frame f shows time T + f / 75 s, so --frames F\n"

@@ -56,7 +56,7 @@ const char* const kViewCommandHelp =
     "                         (default 4), --denoise off|temporal|full (default full),\n"
     "                         --sampling uniform|lens-matched (default uniform),\n"
     "                         --stereo-reuse on|off (default on),\n"
-    "                         --caustics on|off (default off),\n"
+    "                         --caustics on|off (default on),\n"
     "                         --exposure E (default 1); all of these change in the overlay\n"
     "  --no-reproject         show frames at the pose they were rendered at\n"
     "  --no-overlay           no Dear ImGui overlay\n"

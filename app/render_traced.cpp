@@ -10,6 +10,7 @@
 #include "trace/trace_output.h"
 #include "hmd/headset_description.h"
 #include "hybrid/frame_pipeline.h"
+#include "trace/caustics.h"
 #include "trace/convergence.h"
 
 namespace photovr::app {
@@ -152,7 +153,7 @@ std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frame
     std::snprintf(stages, sizeof stages, "; posing the scene %.2f ms", total.animateMs / n);
     line += stages;
   }
-  if (r.caustics) {
+  if (r.caustics && hasLightTracedCaustics(r.scene)) {  // nothing to say where none are traced
     std::snprintf(stages, sizeof stages,
                   "; light-traced caustics %.1f ms of the tracer's (first eye %.1f, second "
                   "%.1f), %.0f light paths a frame reached a pixel",

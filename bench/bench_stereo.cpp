@@ -48,6 +48,7 @@
 #include "core/view.h"
 #include "gl/context.h"
 #include "harness/reference_cache.h"
+#include "hybrid/frame_settings.h"
 #include "hybrid/hybrid_renderer.h"
 #include "trace/caustics.h"
 #include "trace/pixel_estimate.h"
@@ -62,7 +63,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct Args {
   std::string out;
   int width = 0, height = 0, repeats = 0, frames = 0, referenceSpp = 0, seeds = 0;
-  bool caustics = false;     // --caustics: both settings light-trace the sun's caustics
+  bool caustics = kCausticsDefault;  // --caustics: both settings light-trace the sun's caustics
   bool equalFrames = false;  // reuse on gets off's frames: its error per frame, not per time
 };
 
@@ -426,7 +427,7 @@ const char* const kUsage =
     "noise at corresponding pixels. Equal time also at 3F/4 and 5F/4 frames off, and the\n"
     "mean of the three. --equal-frames: reuse on gets the F frames off gets (its error per\n"
     "frame, not per time; F alone). --caustics on: both settings light-trace directional\n"
-    "lights' caustics (trace/caustics.h; default off).\n"
+    "lights' caustics (trace/caustics.h; default on).\n"
     "Writes bench_stereo.csv to --out (out/bench).\n";
 
 int run(const Options& o) {
@@ -438,7 +439,7 @@ int run(const Options& o) {
   a.seeds = o.integer("--seeds", 4, 1, 1000);
   a.referenceSpp = o.integer("--reference-spp", 1024, 1, 1 << 20);
   a.equalFrames = o.has("--equal-frames");
-  a.caustics = o.choice("--caustics", "off", {"on", "off"}) == "on";
+  a.caustics = o.choice("--caustics", kCausticsDefault ? "on" : "off", {"on", "off"}) == "on";
   const std::string only = o.has("--scene") ? builtinSceneArgument(o.text("--scene", "")) : "";
   const std::unique_ptr<gl::Context> gl = gl::Context::createHeadless();
   std::printf("bench_stereo: %dx%d x 2 eyes, 1 spp, 8 bounces; GL: %s\n", a.width, a.height,
