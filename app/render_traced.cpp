@@ -156,7 +156,7 @@ std::string stageLine(const RenderRequest& r, const FrameTimes& total, int frame
   if (r.caustics && hasLightTracedCaustics(r.scene)) {  // nothing to say where none are traced
     std::snprintf(stages, sizeof stages,
                   "; light-traced caustics %.1f ms of the tracer's (first eye %.1f, second "
-                  "%.1f), %.0f light paths a frame reached a pixel",
+                  "%.1f), %.0f connections of light paths a frame landed on a pixel",
                   (total.turnCausticMs[0] + total.turnCausticMs[1]) / n, total.turnCausticMs[0] / n,
                   total.turnCausticMs[1] / n, double(total.causticSplats) / n);
     line += stages;

@@ -94,47 +94,75 @@ bool eyeSees(const TraceContext& ctx, const glm::vec3& eye, const SurfaceHit& hi
   return th.hit && std::abs(th.t - distance) <= tolerance;
 }
 
-// One light path (the numbers 'sampler' draws) up to x1: false where it ends before a
-// receiver.
-bool traceLightPath(const TraceContext& ctx, const CausticSources& sources, Sampler sampler,
-                    CausticLight& out, uint32_t& rays) {
+// The light leaving vertex 'x' along 'w' after arriving along 'in' (towards x): x's BSDF
+// sampled from the light's side (u), and the factor its throughput per area of the next
+// vertex takes: f(w, -in) x's shading cosine over its geometric one on the light's side, and
+// its geometric cosine along w over the sample's density (r^2 cancels as at x2). False where
+// the light goes no further.
+bool scatterTowardsEye(const SurfaceHit& x, const glm::vec3 in, glm::vec2 u, glm::vec3& w,
+                       glm::vec3& factor) {
+  const Frame f = Frame::fromZ(x.shadingNormal);
+  const glm::vec3 toLight = f.toLocal(-in);
+  const float inGeometric = -glm::dot(in, x.geometricNormal);
+  if (!(toLight.z > 0.0f && inGeometric > 0.0f)) return false;
+  const BsdfSample bs = sampleBsdf(prepareBsdf(x.bsdf, toLight), u);
+  if (!bs.valid() || !(bs.wi.z > 0.0f)) return false;
+  w = f.toWorld(bs.wi);
+  const float outGeometric = glm::dot(w, x.geometricNormal);
+  if (!(outGeometric > 0.0f)) return false;
+  // The BSDF as the eye's path meets it (wo on the eye's side), not the sample's reversal.
+  factor = evalBsdf(x.bsdf, bs.wi, toLight) * (toLight.z / inGeometric * outGeometric / bs.pdf);
+  return factor != glm::vec3(0.0f) && isFinite(factor);
+}
+
+// One light path (the numbers 'sampler' draws): the receivers it meets one after another
+// after the caster, at most 'receivers' of them, into out[0 .. the count returned).
+int traceLightPath(const TraceContext& ctx, const CausticSources& sources, Sampler sampler,
+                   int receivers, CausticLight* out, uint32_t& rays) {
   const float uSun = sampler.next(), uCaster = sampler.next();
   const glm::vec2 uDisk = sampler.next2(), uBsdf = sampler.next2();
   const CausticSources::Start start = sources.sample(uSun, uCaster, uDisk);
-  if (!(start.pdf > 0.0f)) return false;
+  if (!(start.pdf > 0.0f)) return 0;
   // x2: what the sun's ray meets first, where the sun lights it.
   ++rays;
   const TraceHit t2 = ctx.embree.intersect(start.origin, -start.toSun, 0.0f, kInfinity);
-  if (!t2.hit) return false;
+  if (!t2.hit) return 0;
   const SurfaceHit x2 = surfaceAt(ctx.scene, t2.instance, t2.triangle, t2.b1, t2.b2, -start.toSun);
-  if (!causticCaster(x2.bsdf)) return false;
+  if (!causticCaster(x2.bsdf)) return 0;
   const Frame f2 = Frame::fromZ(x2.shadingNormal);
   const glm::vec3 toSun2 = f2.toLocal(start.toSun);
   const float sunGeometric = glm::dot(start.toSun, x2.geometricNormal);
-  if (!(toSun2.z > 0.0f && sunGeometric > 0.0f)) return false;
+  if (!(toSun2.z > 0.0f && sunGeometric > 0.0f)) return 0;
   // Its lobe towards x1, sampled from the sun's side (the BRDF is reciprocal).
   const BsdfSample bs = sampleBsdf(prepareBsdf(x2.bsdf, toSun2), uBsdf);
-  if (!bs.valid() || !(bs.wi.z > 0.0f)) return false;
-  const glm::vec3 w = f2.toWorld(bs.wi);
+  if (!bs.valid() || !(bs.wi.z > 0.0f)) return 0;
+  glm::vec3 w = f2.toWorld(bs.wi);
   const float outGeometric = glm::dot(w, x2.geometricNormal);
-  if (!(outGeometric > 0.0f)) return false;
+  if (!(outGeometric > 0.0f)) return 0;
   const glm::vec3 lobe = evalBsdfLobes(x2.bsdf, toSun2, bs.wi).specular;
-  if (lobe == glm::vec3(0.0f)) return false;
-  // x1: what the lobe's ray meets, a receiver.
-  ++rays;
-  const TraceHit t1 = ctx.embree.intersect(offsetRayOrigin(x2, w), w, 0.0f, kInfinity);
-  if (!t1.hit) return false;
-  if (!causticReceiver(surfaceAt(ctx.scene, t1.instance, t1.triangle, t1.b1, t1.b2, w).bsdf))
-    return false;
+  if (lobe == glm::vec3(0.0f)) return 0;
   // The light's throughput leaving x2 along w, per area of x1 (r^2 cancels against x1's
   // area density): E / pdf_plane, x2's shading cosine over the geometric one at which the
   // plane's area maps onto x2's, the lobe over its density, and x2's geometric cosine
   // towards x1 (docs/ARCHITECTURE.md, "Caustics").
-  out.beta =
+  glm::vec3 beta =
       start.irradiance * lobe * (toSun2.z * outGeometric / (start.pdf * sunGeometric * bs.pdf));
-  out.w = w;
-  out.x1 = {t1.instance, t1.triangle, t1.b1, t1.b2};
-  return true;
+  glm::vec3 origin = offsetRayOrigin(x2, w);
+  int reached = 0;
+  for (;;) {
+    // The next receiver: what the ray meets, if it is one.
+    ++rays;
+    const TraceHit t = ctx.embree.intersect(origin, w, 0.0f, kInfinity);
+    if (!t.hit) break;
+    const SurfaceHit x = surfaceAt(ctx.scene, t.instance, t.triangle, t.b1, t.b2, w);
+    if (!causticReceiver(x.bsdf)) break;
+    out[reached++] = {{t.instance, t.triangle, t.b1, t.b2}, w, beta};
+    glm::vec3 factor;
+    if (reached == receivers || !scatterTowardsEye(x, w, sampler.next2(), w, factor)) break;
+    beta *= factor;
+    origin = offsetRayOrigin(x, w);
+  }
+  return reached;
 }
 
 // A light path that reached x1, connected to the eye of 'cam'.
@@ -170,12 +198,17 @@ CausticSplat connectToEye(const TraceContext& ctx, const CausticLight& light, co
   return s;
 }
 
-// This frame's light paths into 'paths' (each reached a receiver or not: reached[k]).
+// This frame's light paths into 'paths': path k's receivers in its slots
+// k x kCausticReceivers + r, reached[slot] where the path reached that one.
 void traceLightPaths(const TraceContext& ctx, const CausticSources& sources, uint32_t frame,
                      uint32_t pathCount, CausticPaths& paths, uint64_t* rays) {
-  paths.lights.resize(pathCount);
-  paths.reached.assign(pathCount, 0);
+  const size_t slots = size_t(pathCount) * kCausticReceivers;
+  paths.lights.resize(slots);
+  paths.reached.assign(slots, 0);
   if (sources.empty()) return;
+  // A path's r-th receiver is reached after r bounces from the eye's side: no more than the
+  // path tracer takes (--bounces), which would otherwise leave them out.
+  const int receivers = std::min(kCausticReceivers, ctx.settings.maxBounces);
   // One Owen-scrambled Sobol sequence over every light path of every frame, keyed by the
   // seed alone (not the eye: both eyes take the same paths, so their noise agrees).
   const uint32_t key = hashCombine(ctx.settings.seed, 0x43415553u);  // "CAUS"
@@ -190,7 +223,10 @@ void traceLightPaths(const TraceContext& ctx, const CausticSources& sources, uin
           const uint64_t index = uint64_t(frame) * pathCount + k;
           const uint32_t seq = hashCombine(key, uint32_t(index >> 32));
           const Sampler sampler{seq, 0, pcgHash(seq), uint32_t(index), SamplerKind::Sobol};
-          paths.reached[k] = traceLightPath(ctx, sources, sampler, paths.lights[k], local);
+          const size_t first = size_t(k) * kCausticReceivers;
+          const int n =
+              traceLightPath(ctx, sources, sampler, receivers, &paths.lights[first], local);
+          for (int r = 0; r < n; ++r) paths.reached[first + size_t(r)] = 1;
         }
         traced += local;
       });
@@ -315,9 +351,9 @@ std::vector<CausticSplat> traceCaustics(const TraceContext& ctx, const CausticSo
   return connectToEye(ctx, paths, camera, rays);
 }
 
-void addCaustics(EyeImage& image, std::span<const CausticSplat> splats) {
-  if (splats.empty()) return;
-  const float share = 1.0f / float(splats.size());
+void addCaustics(EyeImage& image, std::span<const CausticSplat> splats, uint32_t pathCount) {
+  if (splats.empty() || pathCount == 0) return;
+  const float share = 1.0f / float(pathCount);
   const bool lobes = !image.diffuse.empty();
   for (const CausticSplat& s : splats) {
     if (s.pixel >= image.color.size() || image.samples[s.pixel] == 0) continue;
@@ -344,7 +380,7 @@ void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_
     paths.key = {&ctx.scene, &ctx.embree, ctx.settings.seed, frame, count};
   }
   const std::vector<CausticSplat> splats = connectToEye(ctx, paths, camera, &image.rays);
-  addCaustics(image, splats);
+  addCaustics(image, splats, count);
   image.causticSplats = uint64_t(std::count_if(
       splats.begin(), splats.end(), [](const CausticSplat& s) { return s.pixel != ~0u; }));
   image.causticMs =
@@ -353,7 +389,8 @@ void traceCausticsInto(const TraceContext& ctx, const EyeCamera& camera, uint32_
 
 bool CausticPaths::holds(const TraceContext& ctx, uint32_t frame, uint32_t count) const {
   return key.scene == &ctx.scene && key.embree == &ctx.embree && key.seed == ctx.settings.seed &&
-         key.frame == frame && key.count == count && lights.size() == count;
+         key.frame == frame && key.count == count &&
+         lights.size() == size_t(count) * kCausticReceivers;
 }
 
 }  // namespace photovr

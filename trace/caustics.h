@@ -6,14 +6,16 @@
 // spheres scene (docs/MEASUREMENTS.md). Traced from the sun instead (Veach 1997, ch. 10:
 // the light-tracing strategy of bidirectional path tracing, t = 1), each such path is a
 // ray from the sun to x2, a sample of x2's lobe towards x1, and a connection from x1 to
-// the eye: the sun's image in the mirror spreads over the receivers as it should.
+// the eye: the sun's image in the mirror spreads over the receivers as it should. The
+// light goes on from x1 to the receivers x1 lights (eye - x0 - x1 - x2 - sun), up to
+// kCausticReceivers of them, each connected to the eye.
 //
 // The two tracers split the paths between them, with no MIS weights (a partition, each
 // path estimated by exactly one of them): light tracing takes the specular lobe of x2 for
-// paths whose x1 is a causticReceiver seen directly by the eye and whose x2 is a
-// causticCaster lit by a directional light; next-event estimation at the path tracer's
-// second vertex leaves out that lobe for those paths (path_tracer.cpp, directLight), and
-// keeps everything else. Both tests read only the vertex's BSDF inputs, so both tracers
+// paths whose vertices from the eye up to x2 are 1 .. kCausticReceivers causticReceivers and
+// whose x2 is a causticCaster lit by a directional light; next-event estimation at the path
+// tracer's vertex x2 leaves out that lobe for those paths (path_tracer.cpp, directLight),
+// and keeps everything else. Both tests read only the vertex's BSDF inputs, so both tracers
 // decide every path alike. The derivation: docs/ARCHITECTURE.md, "Caustics".
 #pragma once
 
@@ -37,6 +39,12 @@ namespace photovr {
 // 199, bounds what one connection to the eye weighs).
 inline constexpr float kCausticCasterRoughness = 0.3f;
 inline constexpr float kCausticReceiverRoughness = 0.2f;
+
+// The most receivers a light path meets one after another beyond the caster, each seen by
+// the eye: x1, then what x1 scatters the light onto (the sun's caustic on the floor lighting
+// a sphere's underside), and so on. Next-event estimation leaves a caster's lobe out where the
+// path's vertices before it are that many receivers or fewer.
+inline constexpr int kCausticReceivers = 2;
 
 // x2 of a light-traced path: the plain metallic-roughness BRDF (no glass, coat or sheen)
 // with a smooth specular lobe.
@@ -95,8 +103,8 @@ class CausticSources {
   float worldMargin_ = 0.0f;      // how far beyond it a start begins
 };
 
-// A light path up to x1 (the receiver it reached), what the eyes connect to: x1 as a hit
-// record, the direction it arrived along (from x2) and the light's throughput there.
+// A receiver a light path reached, what the eyes connect to: x1 (or a later receiver) as a
+// hit record, the direction it arrived along and the light's throughput there, per its area.
 struct CausticLight {
   HitRef x1;
   glm::vec3 w{0.0f};
@@ -104,7 +112,8 @@ struct CausticLight {
 };
 
 // One frame's light paths, traced once for both eyes of a stereo frame (the eye traced
-// second connects the first's paths to itself): lights[k] holds path k where reached[k].
+// second connects the first's paths to itself): path k's r-th receiver is in slot
+// k x kCausticReceivers + r, where reached[slot].
 struct CausticPaths {
   struct Key {
     const Scene* scene = nullptr;
@@ -118,14 +127,14 @@ struct CausticPaths {
 };
 
 // This frame's light paths (numbers keyed by the seed and frame alone, so both eyes trace
-// the same paths), each connected to 'camera': splats[k] for path k.
+// the same paths), each receiver connected to 'camera': a splat per slot (CausticPaths).
 std::vector<CausticSplat> traceCaustics(const TraceContext& ctx, const CausticSources& sources,
                                         const EyeCamera& camera, uint32_t frame, uint32_t pathCount,
                                         uint64_t* rays = nullptr);
 
-// Adds the splats, each divided by their count, to the pixels they land on that took
-// samples: colour, and the demodulated lobes where the image has them.
-void addCaustics(EyeImage& image, std::span<const CausticSplat> splats);
+// Adds the splats of 'pathCount' light paths, each divided by that count, to the pixels they
+// land on that took samples: colour, and the demodulated lobes where the image has them.
+void addCaustics(EyeImage& image, std::span<const CausticSplat> splats, uint32_t pathCount);
 
 // Both, where ctx.settings.caustics is on, maxBounces reaches a second vertex and the scene
 // has caustics to trace. 'shared':

@@ -45,10 +45,10 @@ struct PathState {
   PathSampler sampler;
   uint32_t depth = 0;
   bool split = false;  // the denoiser surface is the current vertex or behind the path
-  // The path's first vertex is a causticReceiver (trace/caustics.h): with caustics on, its
-  // second vertex's NEE towards a directional light leaves a caster's specular lobe to the
-  // light tracer.
-  bool causticReceiver = false;
+  // Every vertex before the current one is a causticReceiver (trace/caustics.h): with
+  // caustics on, and no more than kCausticReceivers of them, the current vertex's NEE
+  // towards a directional light leaves a caster's specular lobe to the light tracer.
+  bool receiversBefore = true;
   bool albedoSet = false;
   // The bounce ray shadeVertex chose, for advancePath.
   glm::vec3 wi{0.0f};

@@ -94,12 +94,13 @@ void placeLight(const PathState& p, const Frame& frame, VertexShading& vs) {
 }
 
 // Whether NEE's light sample at the path's vertex closes a path that the light tracer of
-// caustics takes (trace/caustics.h): a directional light (delta, at infinity) seen from the
-// path's second vertex, a causticCaster, whose first is a causticReceiver. Then NEE leaves
-// out the caster's specular lobe, which is the light tracer's.
+// caustics takes (trace/caustics.h): a directional light (delta, at infinity) seen from a
+// causticCaster whose vertices before it, 1 .. kCausticReceivers of them, are all
+// causticReceivers. Then NEE leaves out the caster's specular lobe, which is the light
+// tracer's.
 bool lightTracedCaustic(const TraceContext& ctx, const PathState& p, const LightSample& ls) {
-  return ctx.settings.caustics && p.depth == 1 && p.causticReceiver && ls.isDelta &&
-         ls.atInfinity() && causticCaster(p.hit.bsdf);
+  return ctx.settings.caustics && p.depth >= 1 && int(p.depth) <= kCausticReceivers &&
+         p.receiversBefore && ls.isDelta && ls.atInfinity() && causticCaster(p.hit.bsdf);
 }
 
 // Next-event estimation at the path's vertex, MIS-weighted against BSDF sampling for
@@ -277,7 +278,7 @@ void startPath(PathState& p, const SurfaceHit& hit, const glm::vec3& wo,
                const SampleCounters& counters, FirstBounce* record, const FirstBounce* reuse) {
   p.hit = hit;
   p.wo = wo;
-  p.causticReceiver = causticReceiver(hit.bsdf);
+  p.receiversBefore = true;  // none before the first vertex
   p.sampler = reuse ? reuse->sampler : PathSampler::make(counters);
   p.record = record;
   p.reuse = reuse;
@@ -490,6 +491,7 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
     arriveAt(ctx, p, result, th, end, from);
     return false;
   }
+  p.receiversBefore = p.receiversBefore && causticReceiver(p.hit.bsdf);  // before p.hit goes
   // The next vertex is built in p.hit itself. Built on the stack and assigned, its ~150
   // bytes were copied per bounce, read in 16-byte loads across the callee's narrower
   // stores, which stalled on store forwarding (a quarter of advancePath's time, perf).

@@ -103,7 +103,7 @@ struct EyeImage {
   uint64_t rejectedSamples = 0;   // NaN/Inf samples caught and dropped
   // Light-traced caustics (trace/caustics.h), part of the tracer's time: how long (the
   // frame's light paths where this eye traced them, and their connections to it) and how
-  // many light paths reached one of its pixels.
+  // many of their receivers landed on one of its pixels (a path has up to kCausticReceivers).
   double causticMs = 0.0;
   uint64_t causticSplats = 0;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
