@@ -491,7 +491,10 @@ bool advancePath(const TraceContext& ctx, PathState& p, PathResult& result, cons
     arriveAt(ctx, p, result, th, end, from);
     return false;
   }
-  p.receiversBefore = p.receiversBefore && causticReceiver(p.hit.bsdf);  // before p.hit goes
+  // Read before p.hit goes; only while lightTracedCaustic can still ask, so that a path
+  // without caustics pays nothing per bounce.
+  if (ctx.settings.caustics && int(p.depth) < kCausticReceivers)
+    p.receiversBefore = p.receiversBefore && causticReceiver(p.hit.bsdf);
   // The next vertex is built in p.hit itself. Built on the stack and assigned, its ~150
   // bytes were copied per bounce, read in 16-byte loads across the callee's narrower
   // stores, which stalled on store forwarding (a quarter of advancePath's time, perf).
